@@ -1,0 +1,47 @@
+// DelaunayKernel: what the DeWall algorithm and the certifier need from a kernel.
+//
+// Modelled on CGAL's DelaunayTriangulationTraits: each requirement is a functor
+// reached through an `xxx_object()` accessor, so a CGAL kernel fits behind a thin
+// adapter (cgal_kernel_adapter.hpp). Models: Filtered_kernel_d<D> (ours) and
+// Cgal_kernel_adapter<CGAL kernel, D>. The archetype in tests/support proves the
+// algorithm uses nothing else.
+//
+// Requirements, for a kernel K with Point = K::Point_d and D = K::dimension:
+//  * `K::dimension`: the static dimension D, 2 ≤ D ≤ 6.
+//  * `orientation_d_object()(s)`, s a std::array<const Point*, D + 1>:
+//      the sign of det[s_1 − s_0, …, s_D − s_0]; ZERO for affinely dependent
+//      points. Exact. Never perturbed.
+//  * `side_of_oriented_sphere_d_object()(s)`, s a std::array<const Point*, D + 2>
+//      holding a simplex then a query q: ON_POSITIVE_SIDE when q is inside the
+//      circumsphere, ON_NEGATIVE_SIDE when outside, resolving the cospherical
+//      case by CGAL's lexicographic symbolic perturbation; never
+//      ON_ORIENTED_BOUNDARY. \pre the simplex is positively oriented and q is
+//      not one of its vertices.
+//  * `compare_lexicographically_d_object()(p, q)`: the exact lexicographic
+//      order of the coordinates (the order the perturbation is defined on).
+//  * `approximate_coordinates_object()(p)`: the coordinates as
+//      std::array<double, D>. Inexact in general; the algorithm uses them only to
+//      rank candidates and to prune a search, never to decide.
+#pragma once
+
+#include <array>
+#include <concepts>
+
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::kernel {
+
+template <class K>
+concept DelaunayKernel =
+    requires { typename K::Point_d; } && std::convertible_to<decltype(K::dimension), int> &&
+    K::dimension >= 2 && K::dimension <= 6 &&
+    requires(const K& k, const typename K::Point_d& p,
+             const std::array<const typename K::Point_d*, K::dimension + 1>& simplex,
+             const std::array<const typename K::Point_d*, K::dimension + 2>& simplex_and_query) {
+      { k.orientation_d_object()(simplex) } -> std::same_as<Sign>;
+      { k.side_of_oriented_sphere_d_object()(simplex_and_query) } -> std::same_as<Oriented_side>;
+      { k.compare_lexicographically_d_object()(p, p) } -> std::same_as<Comparison_result>;
+      { k.approximate_coordinates_object()(p) } -> std::convertible_to<std::array<double, K::dimension>>;
+    };
+
+}  // namespace dewall::kernel

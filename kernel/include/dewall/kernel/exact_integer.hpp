@@ -1,0 +1,60 @@
+// Exact stage support: doubles as GMP integers on a common binary scale.
+//
+// Every finite double is m·2^e with an integer |m| < 2^53 and e ≥ -1074. A set of
+// doubles multiplied by 2^-E, E the smallest exponent among them, are integers,
+// so differences and products of them are exact in mpz. Scaling all spatial
+// columns by 2^-E (and the lifted column by 2^-2E) multiplies the determinant by
+// a positive number, so its sign is the sign we want.
+#pragma once
+
+#include <gmpxx.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace dewall::kernel {
+
+using Exact_integer = mpz_class;
+
+namespace detail {
+
+struct Split_double {
+  std::int64_t mantissa = 0;  // |mantissa| < 2^53
+  int exponent = 0;           // value = mantissa · 2^exponent
+};
+
+inline Split_double split(double v) {
+  if (v == 0) return {0, std::numeric_limits<int>::max()};
+  int e = 0;
+  const double f = std::frexp(v, &e);  // v = f·2^e, 0.5 ≤ |f| < 1
+  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
+}
+
+}  // namespace detail
+
+/// Converts a batch of doubles to integers on one scale: value·2^-E.
+template <int N>
+class Common_scale {
+ public:
+  explicit Common_scale(const double (&values)[N]) {
+    for (int i = 0; i < N; ++i) {
+      parts_[i] = detail::split(values[i]);
+      if (parts_[i].exponent < min_exponent_) min_exponent_ = parts_[i].exponent;
+    }
+  }
+  /// values[i]·2^-E as an exact integer.
+  Exact_integer integer(int i) const {
+    const auto& s = parts_[i];
+    if (s.mantissa == 0) return 0;
+    Exact_integer z(static_cast<long>(s.mantissa));
+    mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(s.exponent - min_exponent_));
+    return z;
+  }
+
+ private:
+  detail::Split_double parts_[N];
+  int min_exponent_ = std::numeric_limits<int>::max();
+};
+
+}  // namespace dewall::kernel

@@ -1,0 +1,105 @@
+// The one cascade every predicate runs: static filter → interval → exact.
+//
+// A predicate is described by a *recipe*: the K×K matrix whose determinant's
+// sign it is, written once as a template over the number type. The stages below
+// instantiate that recipe with double, Interval and Exact_integer; nothing about
+// the cascade is repeated per predicate (compare CGAL's Filtered_predicate and
+// Geogram's PCK stage templates).
+//
+// Recipe requirements:
+//   static constexpr int arity;            number of input points
+//   static constexpr int size;             K, the matrix size
+//   static constexpr int spatial_columns;  columns holding coordinate differences
+//   static constexpr double epsilon;       error_bounds.hpp, for this K and D
+//   static constexpr Sign sign_adjust;     sign(predicate) = sign_adjust · sign(det)
+//   template <class T, class Coord> static Matrix<T, size> matrix(const Coord& c);
+//       c(i, j) is coordinate j of input point i, as a T.
+//   static Predicate_stats& stats();
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "dewall/kernel/determinant.hpp"
+#include "dewall/kernel/error_bounds.hpp"
+#include "dewall/kernel/exact_integer.hpp"
+#include "dewall/kernel/interval.hpp"
+#include "dewall/kernel/point.hpp"
+#include "dewall/kernel/predicate_stats.hpp"
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::kernel::stages {
+
+template <int D, int N>
+using Point_refs = std::array<const Point_d<D>*, N>;
+
+/// Stage 1: the determinant in double, accepted when it exceeds the proven
+/// bound ε·Π_j M̂_j (error_bounds.hpp). Returns nothing when undecided or when
+/// the column maxima leave the filter's domain.
+template <class Recipe, int D>
+std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p) {
+  constexpr int K = Recipe::size;
+  const auto m = Recipe::template matrix<double>(
+      [&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+  double bound = Recipe::epsilon;
+  for (int j = 0; j < K; ++j) {
+    double column_max = 0;
+    for (int i = 0; i < K; ++i)
+      column_max = std::fmax(column_max, std::fabs(m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
+    if (j < Recipe::spatial_columns) {
+      // A computed difference is 0 exactly when the coordinates are equal
+      // (gradual underflow), so a zero column makes the exact determinant 0.
+      if (column_max == 0) return ZERO;
+      if (!(column_max >= error_bounds::min_column_max && column_max <= error_bounds::max_column_max))
+        return std::nullopt;
+    }
+    bound *= column_max;
+  }
+  const double det = determinant<double, K>(m);
+  if (det > bound) return Recipe::sign_adjust;
+  if (det < -bound) return -Recipe::sign_adjust;
+  return std::nullopt;
+}
+
+/// Stage 2: the same determinant in interval arithmetic (no domain limits).
+template <class Recipe, int D>
+std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
+  const auto m = Recipe::template matrix<Interval>(
+      [&](int i, int j) { return Interval((*p[static_cast<std::size_t>(i)])[j]); });
+  if (auto s = determinant<Interval, Recipe::size>(m).sign()) return Recipe::sign_adjust * *s;
+  return std::nullopt;
+}
+
+/// Stage 3: the same determinant over GMP integers, exact for every finite input.
+template <class Recipe, int D>
+Sign exact(const Point_refs<D, Recipe::arity>& p) {
+  constexpr int N = Recipe::arity * D;
+  double coordinates[N];
+  for (int i = 0; i < Recipe::arity; ++i)
+    for (int j = 0; j < D; ++j) coordinates[i * D + j] = (*p[static_cast<std::size_t>(i)])[j];
+  const Common_scale<N> scale(coordinates);
+  Exact_integer integers[N];
+  for (int k = 0; k < N; ++k) integers[k] = scale.integer(k);
+  const auto m = Recipe::template matrix<Exact_integer>(
+      [&](int i, int j) -> const Exact_integer& { return integers[i * D + j]; });
+  return Recipe::sign_adjust * static_cast<Sign>(sgn(determinant<Exact_integer, Recipe::size>(m)));
+}
+
+/// The cascade, counting which stage decided.
+template <class Recipe, int D>
+Sign filtered(const Point_refs<D, Recipe::arity>& p) {
+  auto& stats = Recipe::stats();
+  if (auto s = filter<Recipe, D>(p)) {
+    count(stats.filter);
+    return *s;
+  }
+  if (auto s = interval<Recipe, D>(p)) {
+    count(stats.interval);
+    return *s;
+  }
+  count(stats.exact);
+  return exact<Recipe, D>(p);
+}
+
+}  // namespace dewall::kernel::stages

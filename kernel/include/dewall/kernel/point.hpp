@@ -1,0 +1,49 @@
+// Point_d<D>: a point of E^D with double coordinates (static dimension).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::kernel {
+
+/// The smallest and largest dimensions the kernel is instantiated and tested for.
+inline constexpr int min_dimension = 2;
+inline constexpr int max_dimension = 6;
+
+/// A point of E^D over double. An aggregate (`Point_d<3>{{1, 2, 3}}`) so that
+/// arrays of points are contiguous and trivially copyable.
+template <int D>
+struct Point_d {
+  static_assert(D >= 1 && D <= max_dimension, "dimension out of range");
+  static constexpr int dimension = D;
+  std::array<double, D> x;
+
+  constexpr double operator[](int i) const { return x[static_cast<std::size_t>(i)]; }
+  constexpr double& operator[](int i) { return x[static_cast<std::size_t>(i)]; }
+  friend constexpr bool operator==(const Point_d&, const Point_d&) = default;
+};
+
+/// Lexicographic comparison of the coordinates (x, then y, ...), exact.
+/// This is the total order of CGAL's `compare_xyz` / `Compare_lexicographically_d`,
+/// which the symbolic perturbation is defined on.
+template <int D>
+constexpr Comparison_result compare_lexicographically(const Point_d<D>& a, const Point_d<D>& b) {
+  for (int i = 0; i < D; ++i) {
+    if (a[i] < b[i]) return SMALLER;
+    if (a[i] > b[i]) return LARGER;
+  }
+  return EQUAL;
+}
+
+/// True when every coordinate is finite (neither NaN nor infinite).
+template <int D>
+bool is_finite(const Point_d<D>& p) {
+  for (int i = 0; i < D; ++i)
+    if (!std::isfinite(p[i])) return false;
+  return true;
+}
+
+}  // namespace dewall::kernel

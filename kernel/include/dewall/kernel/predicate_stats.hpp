@@ -1,0 +1,43 @@
+// Per-stage counters: how often the filter, the interval stage, the exact stage
+// and the symbolic perturbation decided. Compiled out unless the build defines
+// DEWALL_PREDICATE_STATS (CMake option DEWALL_PREDICATE_STATS); the relaxed
+// atomic increments cost a few percent on the hot path, so release builds skip them.
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+
+namespace dewall::kernel {
+
+struct Predicate_stats {
+  std::atomic<std::uint64_t> filter{0}, interval{0}, exact{0}, perturbed{0};
+
+  std::uint64_t calls() const { return filter + interval + exact; }
+  void reset() { filter = interval = exact = perturbed = 0; }
+};
+
+/// Counters indexed by dimension (0 and 1 unused).
+struct All_predicate_stats {
+  std::array<Predicate_stats, 8> orientation, side_of_sphere;
+};
+
+inline All_predicate_stats& predicate_stats() {
+  static All_predicate_stats stats;
+  return stats;
+}
+
+/// True when the counters are compiled in.
+inline constexpr bool predicate_stats_enabled =
+#ifdef DEWALL_PREDICATE_STATS
+    true;
+#else
+    false;
+#endif
+
+inline void count(std::atomic<std::uint64_t>& counter) {
+  if constexpr (predicate_stats_enabled) counter.fetch_add(1, std::memory_order_relaxed);
+  else (void)counter;
+}
+
+}  // namespace dewall::kernel

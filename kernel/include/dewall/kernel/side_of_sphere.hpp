@@ -1,0 +1,89 @@
+// side_of_oriented_sphere_d: where q lies relative to the sphere through p_0 … p_D.
+//
+// Evaluated as the (D+1)×(D+1) determinant M = det[p_i − q, |p_i − q|²]_{i=0..D},
+// the lifted (D+2)×(D+2) determinant translated by q.
+// Sign convention (CGAL's): for a positively oriented simplex, ON_POSITIVE_SIDE
+// when q is strictly inside the sphere. Derivation of the sign adjustment: M is
+// a quadratic in q vanishing on the sphere, M(q) = κ·(r² − |q − c|²); at the
+// centre, |p_i − c|² = r² and M(c) = r²·det[p_i, 1] = r²·(−1)^D·orientation(p),
+// expanding det[p_i, 1] along its last column after subtracting row 0. So
+// inside ⇔ (−1)^D·M > 0 for a positively oriented simplex.
+#pragma once
+
+#include "dewall/kernel/filtered_predicate.hpp"
+#include "dewall/kernel/perturbation.hpp"
+
+namespace dewall::kernel {
+
+template <int D>
+struct Side_of_sphere_recipe {
+  static constexpr int arity = D + 2;  // p_0 … p_D, then q
+  static constexpr int size = D + 1;
+  static constexpr int spatial_columns = D;
+  static constexpr double epsilon = error_bounds::side_of_sphere_epsilon(D);
+  static constexpr Sign sign_adjust = D % 2 == 0 ? POSITIVE : NEGATIVE;
+
+  template <class T, class Coord>
+  static Matrix<T, size> matrix(const Coord& c) {
+    Matrix<T, size> m;
+    for (int i = 0; i <= D; ++i) {
+      auto& row = m[static_cast<std::size_t>(i)];
+      for (int j = 0; j < D; ++j) row[static_cast<std::size_t>(j)] = c(i, j) - c(D + 1, j);
+      T lifted = row[0] * row[0];
+      for (int j = 1; j < D; ++j) lifted += row[static_cast<std::size_t>(j)] * row[static_cast<std::size_t>(j)];
+      row[static_cast<std::size_t>(D)] = lifted;
+    }
+    return m;
+  }
+  static Predicate_stats& stats() { return predicate_stats().side_of_sphere[D]; }
+};
+
+template <int D>
+using Sphere_points = stages::Point_refs<D, D + 2>;  // simplex, then the query
+
+template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p) {
+  return stages::filter<Side_of_sphere_recipe<D>, D>(p);
+}
+template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_interval(const Sphere_points<D>& p) {
+  return stages::interval<Side_of_sphere_recipe<D>, D>(p);
+}
+template <int D>
+Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p) {
+  return stages::exact<Side_of_sphere_recipe<D>, D>(p);
+}
+
+/// The filtered, unperturbed predicate: may return ON_ORIENTED_BOUNDARY.
+/// \pre every coordinate is finite.
+template <int D>
+Oriented_side side_of_oriented_sphere_d(const Sphere_points<D>& p) {
+  return static_cast<Oriented_side>(stages::filtered<Side_of_sphere_recipe<D>, D>(p));
+}
+
+/// The perturbed predicate (CGAL's lexicographic scheme, perturbation.hpp):
+/// never ON_ORIENTED_BOUNDARY.
+/// \pre p_0 … p_D positively oriented (orientation_d == POSITIVE), q distinct from them.
+template <int D>
+Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
+  const Oriented_side side = side_of_oriented_sphere_d<D>(p);
+  if (side != ON_ORIENTED_BOUNDARY) return side;
+  count(predicate_stats().side_of_sphere[D].perturbed);
+  return perturbed_side_of_sphere<D>(
+      p, [](const Orientation_points<D>& o) { return orientation_d<D>(o); },
+      [](const Point_d<D>& a, const Point_d<D>& b) { return compare_lexicographically(a, b) == SMALLER; });
+}
+
+/// Convenience forms: side_of_oriented_sphere_d{,_sos}(p0, …, pD, q).
+template <int D, class... Rest>
+  requires(sizeof...(Rest) == D + 1)
+Oriented_side side_of_oriented_sphere_d(const Point_d<D>& p0, const Rest&... rest) {
+  return side_of_oriented_sphere_d<D>(Sphere_points<D>{&p0, &rest...});
+}
+template <int D, class... Rest>
+  requires(sizeof...(Rest) == D + 1)
+Oriented_side side_of_oriented_sphere_d_sos(const Point_d<D>& p0, const Rest&... rest) {
+  return side_of_oriented_sphere_d_sos<D>(Sphere_points<D>{&p0, &rest...});
+}
+
+}  // namespace dewall::kernel
