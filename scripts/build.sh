@@ -8,6 +8,5 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 fi
-cmake --build "$build" -j "$(nproc)" 2>&1 | grep -v "^\[" || true
-# Fail if the build failed (grep above hides progress lines only).
-cmake --build "$build" -j "$(nproc)" >/dev/null
+
+cmake --build "$build" -j "$(nproc)"
