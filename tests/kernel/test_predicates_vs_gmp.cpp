@@ -1,0 +1,187 @@
+// Every stage of both predicates against the GMP rational reference
+// (tests/support/gmp_reference.hpp), D = 2..6, on every family of
+// tests/support/point_generators.hpp: random, exactly degenerate,
+// near-degenerate, extreme magnitudes and large offsets.
+//
+// A stage that returns a value (the filter, the interval stage) must return the
+// exact sign; the exact stage and the full cascade must always do so.
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dewall/kernel/orientation.hpp"
+#include "dewall/kernel/side_of_sphere.hpp"
+#include "support/gmp_reference.hpp"
+#include "support/point_generators.hpp"
+
+namespace {
+
+using namespace dewall::kernel;
+using dewall::test::Degeneracy;
+using dewall::test::Rng;
+template <int D>
+using Point = dewall::test::Point<D>;
+
+constexpr int cases_per_family = 150;  // × 44 families × 5 dimensions
+constexpr int mismatches_shown = 3;
+
+/// Counts per family: disagreements (with the first few inputs kept) and how
+/// far down the cascade the inputs went.
+struct Tally {
+  int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, exact_zero = 0;
+  std::string report;
+
+  template <int D>
+  void check(const char* what, int expected, int got, const std::vector<Point<D>>& points) {
+    if (expected == got) return;
+    if (++mismatches <= mismatches_shown) {
+      std::ostringstream out;
+      out << what << ": expected " << expected << ", got " << got << " on\n"
+          << dewall::test::format_points<D>(points);
+      report += out.str();
+    }
+  }
+  template <int D>
+  void check_stage(const char* what, int expected, std::optional<Sign> got, int& undecided,
+                   const std::vector<Point<D>>& points) {
+    if (got) check<D>(what, expected, *got, points);
+    else ++undecided;
+  }
+};
+
+template <int D>
+void check_orientation(const std::vector<Point<D>>& points, Degeneracy degeneracy, Tally& tally) {
+  std::array<Point<D>, D + 1> simplex;
+  Orientation_points<D> refs;
+  for (int i = 0; i <= D; ++i) {
+    simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
+    refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+  }
+  const int expected = dewall::test::gmp_orientation<D>(simplex);
+  if (degeneracy == Degeneracy::flat || degeneracy == Degeneracy::flat_but_last)
+    tally.check<D>("generator: orientation of a flat set", 0, expected, points);
+  if (expected == 0) ++tally.exact_zero;
+  tally.check<D>("orientation_d", expected, orientation_d<D>(refs), points);
+  tally.check<D>("orientation_d_exact", expected, orientation_d_exact<D>(refs), points);
+  tally.check_stage<D>("orientation_d_filter", expected, orientation_d_filter<D>(refs), tally.filter_undecided,
+                       points);
+  tally.check_stage<D>("orientation_d_interval", expected, orientation_d_interval<D>(refs),
+                       tally.interval_undecided, points);
+}
+
+template <int D>
+void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degeneracy, Tally& tally) {
+  std::array<Point<D>, D + 1> simplex;
+  Sphere_points<D> refs;
+  for (int i = 0; i <= D + 1; ++i) {
+    if (i <= D) simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
+    refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+  }
+  const int expected = dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]);
+  if (degeneracy == Degeneracy::flat || degeneracy == Degeneracy::cospherical)
+    tally.check<D>("generator: sphere test of a cospherical set", 0, expected, points);
+  if (expected == 0) ++tally.exact_zero;
+  tally.check<D>("side_of_oriented_sphere_d", expected, side_of_oriented_sphere_d<D>(refs), points);
+  tally.check<D>("side_of_oriented_sphere_d_exact", expected, side_of_oriented_sphere_d_exact<D>(refs), points);
+  tally.check_stage<D>("side_of_oriented_sphere_d_filter", expected, side_of_oriented_sphere_d_filter<D>(refs),
+                       tally.filter_undecided, points);
+  tally.check_stage<D>("side_of_oriented_sphere_d_interval", expected,
+                       side_of_oriented_sphere_d_interval<D>(refs), tally.interval_undecided, points);
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE_SIG("GMP reference: sign conventions on the unit simplex", "[gmp]", ((int D), D), 2, 3, 4, 5,
+                       6) {
+  // p_0 = 0, p_i = e_i: positively oriented (det of the identity). Its
+  // circumsphere has centre (½, …, ½) and squared radius D/4.
+  std::array<Point<D>, D + 1> simplex{};
+  for (int i = 0; i < D; ++i) simplex[static_cast<std::size_t>(i + 1)][i] = 1;
+  Point<D> centroid, far, on_sphere{};
+  for (int j = 0; j < D; ++j) {
+    centroid[j] = 1.0 / (D + 1);
+    far[j] = 2;
+  }
+  on_sphere[0] = on_sphere[1] = 1;  // |(½, ½, −½, …)|² = D/4
+
+  CHECK(dewall::test::gmp_orientation<D>(simplex) == POSITIVE);
+  CHECK(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, centroid) == ON_POSITIVE_SIDE);
+  CHECK(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, far) == ON_NEGATIVE_SIDE);
+  CHECK(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, on_sphere) == ON_ORIENTED_BOUNDARY);
+  // The kernel agrees on the same convention.
+  const auto refs = [&](const Point<D>& q) {
+    Sphere_points<D> r;
+    for (int i = 0; i <= D; ++i) r[static_cast<std::size_t>(i)] = &simplex[static_cast<std::size_t>(i)];
+    r[D + 1] = &q;
+    return r;
+  };
+  CHECK(side_of_oriented_sphere_d<D>(refs(centroid)) == ON_POSITIVE_SIDE);
+  CHECK(side_of_oriented_sphere_d<D>(refs(far)) == ON_NEGATIVE_SIDE);
+
+  // An odd permutation flips the orientation and the sphere test.
+  std::swap(simplex[1], simplex[2]);
+  CHECK(dewall::test::gmp_orientation<D>(simplex) == NEGATIVE);
+  CHECK(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, centroid) == ON_NEGATIVE_SIDE);
+  CHECK(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, far) == ON_POSITIVE_SIDE);
+}
+
+TEMPLATE_TEST_CASE_SIG("every predicate stage agrees with GMP rationals", "[gmp][predicates]", ((int D), D), 2, 3,
+                       4, 5, 6) {
+  const auto seed = dewall::test::test_seed(0xde3a11 + D);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  const auto families = dewall::test::point_set_families<D>();
+  long total_cases = 0, filter_undecided = 0, interval_undecided = 0, exact_zero = 0;
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    const auto& family = families[f];
+    Rng rng(seed + f);
+    Tally tally;
+    for (int c = 0; c < cases_per_family; ++c) {
+      const auto points = family.make(rng, D + 2);
+      REQUIRE(points.size() == D + 2);
+      check_orientation<D>(points, family.degeneracy, tally);
+      check_side_of_sphere<D>(points, family.degeneracy, tally);
+      ++tally.cases;
+    }
+    INFO("family \"" << family.name << "\" (index " << f << "), " << tally.mismatches << " mismatches\n"
+                     << tally.report);
+    CHECK(tally.mismatches == 0);
+    total_cases += tally.cases;
+    filter_undecided += tally.filter_undecided;
+    interval_undecided += tally.interval_undecided;
+    exact_zero += tally.exact_zero;
+  }
+  // The families reach every stage: the filter fails on many inputs, the
+  // interval stage on some, and many answers are exactly zero.
+  CHECK(total_cases == cases_per_family * static_cast<long>(families.size()));
+  CHECK(filter_undecided > total_cases / 4);
+  CHECK(exact_zero > total_cases / 4);
+}
+
+TEST_CASE("predicate stats count the deciding stage", "[stats]") {
+  if constexpr (!predicate_stats_enabled) {
+    SUCCEED("DEWALL_PREDICATE_STATS is not defined: counters are compiled out");
+  } else {
+    auto& o = predicate_stats().orientation[3];
+    auto& s = predicate_stats().side_of_sphere[3];
+    o.reset();
+    s.reset();
+    const Point<3> a{{0, 0, 0}}, b{{1, 0, 0}}, c{{0, 1, 0}}, d{{0, 0, 1}}, e{{1, 1, 0}}, g{{0.25, 0.25, 0.25}};
+    CHECK(orientation_d(a, b, c, d) == POSITIVE);  // decided by the filter
+    CHECK(o.filter == 1);
+    // Coplanar (z = x + y) with no zero column: only the exact stage proves ZERO.
+    const Point<3> b1{{1, 0, 1}}, c1{{0, 1, 1}}, e1{{1, 1, 2}};
+    CHECK(orientation_d(a, b1, c1, e1) == ZERO);
+    CHECK(o.exact == 1);
+    CHECK(o.calls() == 2);
+    CHECK(side_of_oriented_sphere_d(a, b, c, d, g) == ON_POSITIVE_SIDE);
+    CHECK(s.filter == 1);
+    CHECK(side_of_oriented_sphere_d_sos(a, b, c, d, e) == ON_NEGATIVE_SIDE);  // cospherical
+    CHECK(s.exact == 1);
+    CHECK(s.perturbed == 1);
+    CHECK(s.calls() == 2);
+  }
+}
