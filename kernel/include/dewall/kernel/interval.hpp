@@ -48,6 +48,21 @@ class Interval {
     }
     return outward(lo, hi);
   }
+  /// Division; the whole line when b contains 0.
+  friend Interval operator/(const Interval& a, const Interval& b) {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    if (!(b.lo_ > 0 || b.hi_ < 0)) return {-inf, inf};
+    const double q[4] = {a.lo_ / b.lo_, a.lo_ / b.hi_, a.hi_ / b.lo_, a.hi_ / b.hi_};
+    double lo = q[0], hi = q[0];
+    for (double v : q) {
+      if (std::isnan(v)) return nan_interval();
+      lo = std::fmin(lo, v);
+      hi = std::fmax(hi, v);
+    }
+    return outward(lo, hi);
+  }
+  /// The largest absolute value in the interval.
+  double magnitude() const { return std::fmax(std::fabs(lo_), std::fabs(hi_)); }
   Interval& operator+=(const Interval& b) { return *this = *this + b; }
   Interval& operator-=(const Interval& b) { return *this = *this - b; }
 

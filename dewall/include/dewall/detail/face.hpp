@@ -1,0 +1,65 @@
+// Faces of the triangulation: D vertex indices, oriented.
+//
+// Convention: a face (f_0 … f_{D−1}) is stored so that its *outer* side is where
+// orientation_d(f_0, …, f_{D−1}, q) is POSITIVE. A simplex is emitted as its
+// face followed by its apex, hence positively oriented. Topology only: no
+// geometry here (STYLE 15).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <utility>
+
+namespace dewall::detail {
+
+using Index = std::uint32_t;
+
+template <int D>
+using Face = std::array<Index, D>;
+
+template <int D>
+using Simplex = std::array<Index, D + 1>;
+
+/// The key identifying a face regardless of orientation: its sorted indices.
+template <int D>
+Face<D> face_key(Face<D> f) {
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+template <int D>
+std::uint64_t face_hash(const Face<D>& key) {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (Index v : key) {
+    h ^= v;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 32;
+  }
+  return h;
+}
+
+/// The face of the positively oriented simplex s opposite vertex i, oriented so
+/// that its outer side is away from s[i].
+/// Derivation: moving q from position i to the end of (s_0 … q … s_D) takes D − i
+/// transpositions, so orientation(face, q) = (−1)^(D−i)·orientation(s with s_i → q),
+/// and the latter is positive on s_i's (inner) side. For D − i even we swap two
+/// vertices to make the outer side positive.
+template <int D>
+Face<D> opposite_face(const Simplex<D>& s, int i) {
+  Face<D> f;
+  int k = 0;
+  for (int j = 0; j <= D; ++j)
+    if (j != i) f[static_cast<std::size_t>(k++)] = s[static_cast<std::size_t>(j)];
+  if ((D - i) % 2 == 0) std::swap(f[0], f[1]);
+  return f;
+}
+
+/// The same face with its outer side flipped.
+template <int D>
+Face<D> flipped(Face<D> f) {
+  std::swap(f[0], f[1]);
+  return f;
+}
+
+}  // namespace dewall::detail

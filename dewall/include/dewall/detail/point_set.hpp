@@ -1,0 +1,61 @@
+// Point_set: the distinct input points as the algorithm sees them — kernel
+// points by local index, their double coordinates for ranking, the uniform
+// grid, and the map back to input indices. Built once, then read-only.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "dewall/detail/face.hpp"
+#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::detail {
+
+template <class K>
+struct Point_set {
+  static constexpr int D = K::dimension;
+  using Point = typename K::Point_d;
+
+  K kernel;
+  std::vector<const Point*> points;     // by local index
+  std::vector<Coords<D>> coords;        // approximate coordinates, by local index
+  std::vector<std::size_t> input_index; // local index -> index in the caller's input
+  Uniform_grid<D> grid;
+
+  Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, double cells_per_point)
+      : kernel(k), points(std::move(pts)), coords(approximate(k, points)), input_index(std::move(input)),
+        grid(coords, cells_per_point) {}
+
+  std::size_t size() const { return points.size(); }
+  std::span<const Coords<D>> coords_for_checks() const { return coords; }
+
+  kernel::Sign orientation(const Face<D>& f, Index q) const {
+    std::array<const Point*, D + 1> s;
+    for (int i = 0; i < D; ++i) s[i] = points[f[i]];
+    s[D] = points[q];
+    return kernel.orientation_d_object()(s);
+  }
+  kernel::Sign orientation(const Simplex<D>& s) const {
+    std::array<const Point*, D + 1> p;
+    for (int i = 0; i <= D; ++i) p[i] = points[s[i]];
+    return kernel.orientation_d_object()(p);
+  }
+  /// Perturbed: is q inside the circumsphere of the positively oriented simplex s?
+  bool inside_sphere(const Simplex<D>& s, Index q) const {
+    std::array<const Point*, D + 2> p;
+    for (int i = 0; i <= D; ++i) p[i] = points[s[i]];
+    p[D + 1] = points[q];
+    return kernel.side_of_oriented_sphere_d_object()(p) == kernel::ON_POSITIVE_SIDE;
+  }
+
+ private:
+  static std::vector<Coords<D>> approximate(const K& k, const std::vector<const Point*>& pts) {
+    std::vector<Coords<D>> c(pts.size());
+    const auto to_double = k.approximate_coordinates_object();
+    for (std::size_t i = 0; i < pts.size(); ++i) c[i] = to_double(*pts[i]);
+    return c;
+  }
+};
+
+}  // namespace dewall::detail
