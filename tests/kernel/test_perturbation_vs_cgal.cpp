@@ -30,6 +30,7 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dewall/kernel/orientation.hpp"
@@ -46,7 +47,7 @@ using Point = dewall::test::Point<D>;
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 constexpr int cases_per_family = 60;  // × 44 families × 5 dimensions
-constexpr int sampled_even_permutations = 10;  // D ≥ 4: (D+1)!/2 is too many to try all
+constexpr int sampled_even_permutations = 12;  // D ≥ 4: (D+1)!/2 is too many to try all
 
 // CGAL's protected 3D predicate, made reachable.
 struct Delaunay_3 : CGAL::Delaunay_triangulation_3<Epick> {
@@ -104,11 +105,16 @@ Oriented_side cgal_d(const std::vector<Point<D>>& simplex, const Point<D>& q, st
   t.insert(points.begin(), points.end());
   REQUIRE(t.current_dimension() == D);
   REQUIRE(t.number_of_finite_full_cells() == 1);
-  const typename Triangulation::Full_cell_const_handle cell = t.finite_full_cells_begin();
+  const typename Triangulation::Full_cell_const_handle cell = std::as_const(t).finite_full_cells_begin().base();
   cell_order.clear();
   for (int i = 0; i <= D; ++i) cell_order.push_back(from_cgal_d<D>(cell->vertex(i)->point()));
+  // As CGAL's Conflict_predicate does: perturb only when the plain test is zero.
+  const auto cgal_q = to_cgal_d<D>(q);
+  const auto side = t.geom_traits().side_of_oriented_sphere_d_object()(t.points_begin(cell),
+                                                                       t.points_begin(cell) + D + 1, cgal_q);
+  if (side != CGAL::ON_ORIENTED_BOUNDARY) return static_cast<Oriented_side>(side);
   return static_cast<Oriented_side>(
-      t.perturbed_side_of_positive_sphere(to_cgal_d<D>(q), cell, t.geom_traits().orientation_d_object()));
+      t.perturbed_side_of_positive_sphere(cgal_q, cell, t.geom_traits().orientation_d_object()));
 }
 #endif
 
@@ -123,7 +129,7 @@ std::vector<std::vector<int>> even_permutations(Rng& rng, int n, int sampled) {
     return inversions % 2 == 0;
   };
   std::vector<std::vector<int>> out;
-  if (n <= 5) {
+  if (n <= 4) {
     do {
       if (is_even(perm)) out.push_back(perm);
     } while (std::next_permutation(perm.begin(), perm.end()));
@@ -218,13 +224,13 @@ TEMPLATE_TEST_CASE_SIG("side_of_oriented_sphere_d_sos equals CGAL's perturbed pr
   CHECK(degenerate > cases / 5);
 }
 
-TEMPLATE_TEST_CASE_SIG("side_of_oriented_sphere_d_sos on all of {0,1,2}^D", "[sos][cgal]", ((int D), D), 2, 3) {
-  // Every positively oriented simplex of the 3×3 grid against every other grid
+TEMPLATE_TEST_CASE_SIG("side_of_oriented_sphere_d_sos on small grids", "[sos][cgal]", ((int D), D), 2, 3) {
+  // Every positively oriented triangle of the 4×4 grid against every other grid
   // point (2D), and a sample of the 3×3×3 grid (3D): the densest ties there are.
   const auto seed = dewall::test::test_seed(0x9e1d + D);
   INFO("seed " << seed);
   Rng rng(seed);
-  const auto grid = dewall::test::grid_points<D>(3);
+  const auto grid = dewall::test::grid_points<D>(D == 2 ? 4 : 3);
   Tally tally;
   const int samples = D == 2 ? 0 : 4000;
   if constexpr (D == 2) {
