@@ -37,11 +37,24 @@ Ball_box<D> circumball_box(const std::array<const Coords<D>*, D + 1>& s) {
   kernel::Matrix<double, D> a;
   std::array<double, D> half_lift;
   std::array<double, D> col_max{};
-  double lift_max = 0;
+  double lift_max = 0, largest = 0;
+  for (int i = 0; i < D; ++i)
+    for (int j = 0; j < D; ++j) {
+      a[i][j] = (*s[i + 1])[j] - (*s[0])[j];
+      largest = std::fmax(largest, std::fabs(a[i][j]));
+    }
+  // Very large or very small simplices: scale the differences by a power of two
+  // (exact, but for entries that underflow, whose absolute error ≤ 2^-1075 the
+  // step-4 underflow allowance of error_bounds.hpp covers) and the centre back.
+  int exponent = 0;
+  if (largest > 0 && !(largest >= 0x1p-50 && largest <= 0x1p50)) {
+    exponent = std::ilogb(largest);
+    for (auto& row : a)
+      for (double& v : row) v = std::ldexp(v, -exponent);
+  }
   for (int i = 0; i < D; ++i) {
     double l = 0;
     for (int j = 0; j < D; ++j) {
-      a[i][j] = (*s[i + 1])[j] - (*s[0])[j];
       l += a[i][j] * a[i][j];
       col_max[j] = std::fmax(col_max[j], std::fabs(a[i][j]));
     }
@@ -65,7 +78,7 @@ Ball_box<D> circumball_box(const std::array<const Coords<D>*, D + 1>& s) {
     for (int i = 0; i < D; ++i) aj[i][j] = half_lift[i];
     const double dj = kernel::determinant<double, D>(aj);
     const double ej = eb::filter_epsilon(lifted_factors, D) * product / col_max[j] * lift_max;
-    const Interval offset = (Interval(dj) + Interval(-ej, ej)) / denominator;
+    const Interval offset = (Interval(dj) + Interval(-ej, ej)) / denominator * Interval(std::ldexp(1.0, exponent));
     centre[j] = Interval((*s[0])[j]) + offset;
     const double m = offset.magnitude();
     radius2 += Interval(m) * Interval(m);

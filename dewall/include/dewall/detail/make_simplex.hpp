@@ -23,6 +23,8 @@
 #include <vector>
 
 #include "dewall/detail/ball_enclosure.hpp"
+#include "dewall/detail/face_side_filter.hpp"
+#include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
 
 namespace dewall::detail {
@@ -50,11 +52,20 @@ class Simplex_search {
     Simplex<D> s;
     std::copy(f.begin(), f.end(), s.begin());
     Ball_box<D> ball;
+    std::optional<Face_side_filter<D>> side_filter;
+    if constexpr (kernel::approximate_coordinates_are_exact<K>) {
+      std::array<const Coords<D>*, D> fc;
+      for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
+      side_filter.emplace(fc);
+    }
     visit_rings(centroid_cell(f), [&](Index q) {
       if (is_vertex(f, q)) return;
       if (best && ball.bounded && !in_box(ball, q)) return;
       ++stats_.candidates;
-      if (ps_.orientation(f, q) != kernel::POSITIVE) return;
+      std::optional<kernel::Sign> side;
+      if (side_filter) side = (*side_filter)(ps_.coords[q]);
+      if (!side) side = ps_.orientation(f, q);
+      if (*side != kernel::POSITIVE) return;
       if (best) {
         s[D] = *best;
         if (!ps_.inside_sphere(s, q)) return;

@@ -25,6 +25,22 @@ template <class CK, int D>
 struct Is_cgal_d_kernel : std::false_type {};
 template <int D>
 struct Is_cgal_d_kernel<CGAL::Epick_d<CGAL::Dimension_tag<D>>, D> : std::true_type {};
+
+// The point type, selected lazily: only the chosen branch's member is named.
+template <class CK, int D, bool is_d_kernel>
+struct Cgal_point;
+template <class CK, int D>
+struct Cgal_point<CK, D, true> {
+  using type = typename CK::Point_d;
+};
+template <class CK>
+struct Cgal_point<CK, 2, false> {
+  using type = typename CK::Point_2;
+};
+template <class CK>
+struct Cgal_point<CK, 3, false> {
+  using type = typename CK::Point_3;
+};
 }  // namespace detail
 
 /// CK: a CGAL kernel. For D = 2, 3 a 2D/3D kernel (e.g. CGAL::Epick); otherwise
@@ -36,8 +52,7 @@ class Cgal_kernel_adapter {
  public:
   static constexpr int dimension = D;
   using Cgal_kernel = CK;
-  using Point_d = std::conditional_t<is_d_kernel, typename CK::Point_d,
-                                     std::conditional_t<D == 2, typename CK::Point_2, typename CK::Point_3>>;
+  using Point_d = typename detail::Cgal_point<CK, D, is_d_kernel>::type;
 
   struct Orientation_d {
     CK kernel;

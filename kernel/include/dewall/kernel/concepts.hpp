@@ -22,6 +22,11 @@
 //  * `approximate_coordinates_object()(p)`: the coordinates as
 //      std::array<double, D>. Inexact in general; the algorithm uses them only to
 //      rank candidates and to prune a search, never to decide.
+//  * Optional: `static constexpr bool approximate_coordinates_are_exact = true`
+//      declares that the points *are* those doubles. The algorithm may then
+//      decide with its own proven double filters (e.g. a per-face orientation
+//      filter), falling back to the kernel's predicates when they cannot prove
+//      a sign. Without it, every decision goes to the kernel's functors.
 #pragma once
 
 #include <array>
@@ -43,5 +48,11 @@ concept DelaunayKernel =
       { k.compare_lexicographically_d_object()(p, p) } -> std::same_as<Comparison_result>;
       { k.approximate_coordinates_object()(p) } -> std::convertible_to<std::array<double, K::dimension>>;
     };
+
+/// True when K declares its points to be exactly their double coordinates.
+template <class K>
+inline constexpr bool approximate_coordinates_are_exact = requires {
+  requires K::approximate_coordinates_are_exact;
+};
 
 }  // namespace dewall::kernel

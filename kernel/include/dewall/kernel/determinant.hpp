@@ -47,7 +47,7 @@ struct Minor_masks {
 /// T must support copy, +, -, * (a commutative ring). Complexity: K·2^(K-1)
 /// products and as many additions.
 template <class T, int K>
-T determinant(const Matrix<T, K>& a) {
+[[gnu::always_inline]] inline T determinant(const Matrix<T, K>& a) {
   static_assert(K >= 1 && K <= 8);
   if constexpr (K == 1) {
     return a[0][0];

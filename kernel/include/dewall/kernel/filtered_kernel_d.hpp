@@ -12,6 +12,7 @@ namespace dewall::kernel {
 template <int D>
 struct Filtered_kernel_d {
   static constexpr int dimension = D;
+  static constexpr bool approximate_coordinates_are_exact = true;
   using Point_d = kernel::Point_d<D>;
 
   struct Orientation_d {

@@ -31,6 +31,13 @@
 
 namespace dewall::kernel::stages {
 
+/// max(m, |v|) without a libm call. An infinite v wins and then fails the
+/// domain check; v is never NaN (differences of finite doubles).
+inline double max_abs(double m, double v) {
+  const double a = v < 0 ? -v : v;
+  return a > m ? a : m;
+}
+
 template <int D, int N>
 using Point_refs = std::array<const Point_d<D>*, N>;
 
@@ -46,7 +53,7 @@ std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p) {
   for (int j = 0; j < K; ++j) {
     double column_max = 0;
     for (int i = 0; i < K; ++i)
-      column_max = std::fmax(column_max, std::fabs(m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
+      column_max = max_abs(column_max, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
     if (j < Recipe::spatial_columns) {
       // A computed difference is 0 exactly when the coordinates are equal
       // (gradual underflow), so a zero column makes the exact determinant 0.

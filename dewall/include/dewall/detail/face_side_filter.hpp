@@ -1,0 +1,89 @@
+// Face_side_filter: orientation(f_0 … f_{D−1}, q) for one face f and many q,
+// at the cost of a dot product per q, with a proven error bound.
+//
+// Expanding det[f_1 − f_0, …, f_{D−1} − f_0, q − f_0] along its last row gives
+// Σ_j (q_j − f0_j)·C_j, where the cofactors C_j, (D−1)×(D−1) determinants of the
+// face's differences, are computed once per face by the kernel's `determinant`.
+// By error_bounds.hpp (steps 1–4 with D − 1), |Ĉ_j − C_j| ≤ e_j =
+// ε_{D−1}·Π_{k≠j} M_k when the face's column maxima M_k lie in the filter domain.
+// For x̂_j = fl(q_j − f0_j) = x_j(1 + δ) and S = fl(Σ_j x̂_j·Ĉ_j) (one product and
+// at most D − 1 sums per term):
+//   |S − Σ_j x_j C_j| ≤ γ_{D+1}·Σ_j |x̂_j|(|Ĉ_j| + e_j) + (1 + γ_{D+1})·Σ_j |x̂_j| e_j
+// (using |x_j| ≤ |x̂_j|/(1 − u), absorbed with the rounding of this bound itself by
+// the (1 + 2^-30) margin), plus at most D·2^-1075 lost to underflow in the
+// products, covered by the absolute term 2^-1000. Overflow gives an infinite
+// or NaN S or bound, which never passes the test. Undecided cases return
+// nothing and go to the kernel's exact predicate.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <optional>
+
+#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/kernel/determinant.hpp"
+#include "dewall/kernel/error_bounds.hpp"
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::detail {
+
+template <int D>
+class Face_side_filter {
+ public:
+  Face_side_filter(const std::array<const Coords<D>*, D>& f) : origin_(*f[0]) {
+    namespace eb = kernel::error_bounds;
+    std::array<std::array<double, D>, D - 1> rows;
+    std::array<double, D> col_max{};
+    for (int i = 0; i + 1 < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        rows[i][j] = (*f[i + 1])[j] - origin_[j];
+        col_max[j] = std::max(col_max[j], std::fabs(rows[i][j]));
+      }
+    valid_ = true;
+    for (int j = 0; j < D; ++j)
+      // A zero column makes every minor containing it exactly 0 (each of its
+      // products has a zero factor), so it needs no domain check.
+      if (col_max[j] != 0 && !(col_max[j] >= eb::min_column_max && col_max[j] <= eb::max_column_max))
+        valid_ = false;
+    if (!valid_) return;
+    for (int j = 0; j < D; ++j) {
+      // Cofactor of (D−1, j): (−1)^(D−1+j) times the minor without column j.
+      kernel::Matrix<double, D - 1> minor;
+      double product = 1;
+      for (int i = 0; i + 1 < D; ++i)
+        for (int k = 0, c = 0; k < D; ++k)
+          if (k != j) minor[i][c++] = rows[i][k];
+      for (int k = 0; k < D; ++k)
+        if (k != j) product *= col_max[k];
+      const double value = kernel::determinant<double, D - 1>(minor);
+      cofactor_[j] = (D - 1 + j) % 2 == 0 ? value : -value;
+      error_[j] = eb::orientation_epsilon(D - 1) * product;
+    }
+  }
+
+  /// The sign of orientation(f, q) when the filter can prove it.
+  std::optional<kernel::Sign> operator()(const Coords<D>& q) const {
+    if (!valid_) return std::nullopt;
+    namespace eb = kernel::error_bounds;
+    double s = 0, magnitude = 0, carried = 0;
+    for (int j = 0; j < D; ++j) {
+      const double x = q[j] - origin_[j];
+      const double ax = std::fabs(x);
+      s += x * cofactor_[j];
+      magnitude += ax * (std::fabs(cofactor_[j]) + error_[j]);
+      carried += ax * error_[j];
+    }
+    constexpr double gamma = eb::gamma(D + 1);
+    const double bound = (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
+    if (s > bound) return kernel::POSITIVE;
+    if (s < -bound) return kernel::NEGATIVE;
+    return std::nullopt;
+  }
+
+ private:
+  Coords<D> origin_;
+  std::array<double, D> cofactor_{}, error_{};
+  bool valid_ = false;
+};
+
+}  // namespace dewall::detail
