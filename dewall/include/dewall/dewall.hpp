@@ -35,9 +35,11 @@ namespace dewall {
 template <int D>
 using Simplex = std::array<std::uint32_t, D + 1>;
 
-/// Streams the Delaunay triangulation of `points`: calls `sink(simplex)` once for
+/// The Delaunay triangulation of `points`, handed to `sink(simplex)` once for
 /// each simplex (a dewall::Simplex<D> of input indices, positively oriented), in
-/// the order DeWall builds them.
+/// DeWall's depth-first order (the same for any number of threads). The
+/// simplices are handed over once the triangulation is complete; true streaming
+/// (memory near the size of the walls) is future work.
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D.
 /// Complexity: expected O(n log n) on uniformly distributed points.
@@ -55,15 +57,16 @@ Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& si
   const detail::Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
   detail::require_full_dimension<D>(ps.coords_for_checks());
 
-  auto emit = [&](const detail::Simplex<D>& s) {
+  detail::Wall_builder<K> builder(ps, options.parallel_depth);
+  std::vector<detail::Index> all(ps.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<detail::Index>(i);
+  std::vector<detail::Simplex<D>> local;
+  builder.run(all, local);
+  for (const auto& s : local) {
     Simplex<D> out;
     for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s[i]]);
     sink(out);
-  };
-  detail::Wall_builder<K, decltype(emit)> builder(ps, emit);
-  std::vector<detail::Index> all(ps.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<detail::Index>(i);
-  builder.run(all);
+  }
 
   Statistics st;
   st.input_points = points.size();

@@ -1,11 +1,16 @@
 // Options of dewall::triangulate.
 #pragma once
 
+#include <cstddef>
+
 namespace dewall {
 
 struct Options {
   /// Grid cells per point (the paper uses about one).
   double cells_per_point = 1.0;
+  /// Recursion levels whose two halves run as parallel tasks (TBB): up to
+  /// 2^parallel_depth tasks. 0 runs serially. The output is the same either way.
+  int parallel_depth = 6;
 };
 
 /// Counters for the paper's Table 1, filled by triangulate.

@@ -23,6 +23,7 @@
 #include "dewall/detail/uniform_grid.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
+#include "dewall/kernel/interval.hpp"
 #include "dewall/kernel/sign.hpp"
 
 namespace dewall::detail {
@@ -45,7 +46,6 @@ class Face_side_filter {
       // products has a zero factor), so it needs no domain check.
       if (col_max[j] != 0 && !(col_max[j] >= eb::min_column_max && col_max[j] <= eb::max_column_max))
         valid_ = false;
-    if (!valid_) return;
     for (int j = 0; j < D; ++j) {
       // Cofactor of (D−1, j): (−1)^(D−1+j) times the minor without column j.
       kernel::Matrix<double, D - 1> minor;
@@ -59,6 +59,43 @@ class Face_side_filter {
       cofactor_[j] = (D - 1 + j) % 2 == 0 ? value : -value;
       error_[j] = eb::orientation_epsilon(D - 1) * product;
     }
+  }
+
+  /// The cofactors: orientation(f, q) ≈ Σ_j (q_j − f0_j)·C_j, so C is a normal
+  /// pointing to the outer side (for ranking; not a proof).
+  const std::array<double, D>& normal() const { return cofactor_; }
+  const Coords<D>& origin() const { return origin_; }
+
+  /// Shrinks the box [lo, hi] to a box that still holds every point of it
+  /// strictly on the outer side of f; false when no point of it can be there.
+  /// Proof: with d = x − f_0 (exact) and |Ĉ_j − C_j| ≤ e_j, orientation(f, x) =
+  /// Σ_j d_j C_j ≤ Σ_j d_j Ĉ_j + B, B = Σ_j max|d_j|·e_j over the box. So an outer x
+  /// has d_k Ĉ_k > −B − Σ_{j≠k} max_box(d_j Ĉ_j) =: −U_k, which bounds x_k on one
+  /// side. Everything is evaluated in outward-rounded interval arithmetic.
+  bool clip_to_outer_side(Coords<D>& lo, Coords<D>& hi) const {
+    if (!valid_) return true;
+    using kernel::Interval;
+    std::array<Interval, D> d, term;
+    Interval slack(0.0);
+    for (int j = 0; j < D; ++j) {
+      d[j] = Interval(lo[j]) - Interval(origin_[j]);
+      const Interval dh = Interval(hi[j]) - Interval(origin_[j]);
+      d[j] = Interval(std::min(d[j].lo(), dh.lo()), std::max(d[j].hi(), dh.hi()));
+      term[j] = d[j] * Interval(cofactor_[j]);
+      slack += Interval(d[j].magnitude()) * Interval(error_[j]);
+    }
+    for (int k = 0; k < D; ++k) {
+      if (cofactor_[k] == 0) continue;
+      Interval u = slack;
+      for (int j = 0; j < D; ++j)
+        if (j != k) u += Interval(term[j].hi());
+      // Outer points satisfy d_k·Ĉ_k > −u.
+      const Interval limit = Interval(origin_[k]) - u / Interval(cofactor_[k]);
+      if (cofactor_[k] > 0) lo[k] = std::max(lo[k], limit.lo());
+      else hi[k] = std::min(hi[k], limit.hi());
+      if (!(lo[k] <= hi[k])) return false;
+    }
+    return true;
   }
 
   /// The sign of orientation(f, q) when the filter can prove it.

@@ -19,11 +19,14 @@
 #pragma once
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <vector>
 
 #include "dewall/detail/ball_enclosure.hpp"
 #include "dewall/detail/face_side_filter.hpp"
+#include "dewall/detail/pencil_rank.hpp"
+#include "dewall/detail/sphere_filter.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
 
@@ -34,6 +37,9 @@ struct Search_stats {
   std::size_t searches = 0;
   std::size_t cells_visited = 0;
   std::size_t candidates = 0;
+  std::size_t best_changes = 0;
+  std::size_t unbounded = 0;
+  std::size_t in_sphere_tests = 0;
 };
 
 template <class K>
@@ -52,29 +58,73 @@ class Simplex_search {
     Simplex<D> s;
     std::copy(f.begin(), f.end(), s.begin());
     Ball_box<D> ball;
-    std::optional<Face_side_filter<D>> side_filter;
-    if constexpr (kernel::approximate_coordinates_are_exact<K>) {
-      std::array<const Coords<D>*, D> fc;
-      for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
-      side_filter.emplace(fc);
-    }
-    visit_rings(centroid_cell(f), [&](Index q) {
-      if (is_vertex(f, q)) return;
-      if (best && ball.bounded && !in_box(ball, q)) return;
+    std::array<const Coords<D>*, D> fc;
+    for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
+    const Face_side_filter<D> side_filter(fc);
+    std::optional<Sphere_filter<D>> sphere_filter;
+    auto consider = [&](Index q) {
+      if (is_vertex(f, q) || q == best) return false;  // the seed is met again in the rings
+      if (best && ball.bounded && !in_box(ball, q)) return false;
       ++stats_.candidates;
       std::optional<kernel::Sign> side;
-      if (side_filter) side = (*side_filter)(ps_.coords[q]);
+      if constexpr (kernel::approximate_coordinates_are_exact<K>) side = side_filter(ps_.coords[q]);
       if (!side) side = ps_.orientation(f, q);
-      if (*side != kernel::POSITIVE) return;
+      if (*side != kernel::POSITIVE) return false;
       if (best) {
         s[D] = *best;
-        if (!ps_.inside_sphere(s, q)) return;
+        ++stats_.in_sphere_tests;
+        std::optional<bool> inside;
+        if constexpr (kernel::approximate_coordinates_are_exact<K>) inside = sphere_filter->inside(ps_.coords[q]);
+        if (!inside) inside = ps_.inside_sphere(s, q);
+        if (!*inside) return false;
       }
       best = q;
       s[D] = q;
+      ++stats_.best_changes;
       ball = circumball_box<D>(coords_of(s));
-    }, [&](Cell_box<D>& box) {
+      if constexpr (kernel::approximate_coordinates_are_exact<K>) sphere_filter.emplace(coords_of(s));
+      return true;
+    };
+    const auto start = centroid_cell(f);
+    // Seed: the candidate of smallest pencil parameter among the cells next to
+    // the face is usually the apex, so the search box is small from the start.
+    if (const Pencil_rank<D> rank(fc, side_filter.normal()); rank.valid()) {
+      double best_t = std::numeric_limits<double>::infinity();
+      Index seed = 0;
+      Cell_box<D> near;
+      for (int i = 0; i < D; ++i) {
+        near.lo[i] = std::max(start[i] - 1, 0);
+        near.hi[i] = std::min(start[i] + 1, ps_.grid.dims()[i] - 1);
+      }
+      for_each_cell(near, [&](std::size_t cell) {
+        for (const Index* q = ps_.grid.begin(cell); q != ps_.grid.end(cell); ++q) {
+          const double t = rank(ps_.coords[*q]);
+          if (t < best_t && !is_vertex(f, *q)) best_t = t, seed = *q;
+        }
+      });
+      if (best_t < std::numeric_limits<double>::infinity()) consider(seed);
+    }
+    // Far searches (no candidate next to the face: near the hull; or a large
+    // sphere) are confined to the part of the grid on the outer side of f. A
+    // face with no room there is a hull face, answered without a scan.
+    Cell_box<D> limit = ps_.grid.all_cells();
+    bool clipped = false;
+    auto clip = [&] {
+      clipped = true;
+      ++stats_.unbounded;
+      Coords<D> lo = ps_.grid.lower(), hi = ps_.grid.upper();
+      if (!side_filter.clip_to_outer_side(lo, hi)) return false;
+      limit = ps_.grid.cells_meeting(lo, hi);
+      return true;
+    };
+    if (!best && !clip()) return std::nullopt;
+    visit_rings(start, consider, [&](Cell_box<D>& box) {
       if (best && ball.bounded) box = ps_.grid.cells_meeting(ball.lo, ball.hi);
+      if (!clipped && wide(box)) clip();
+      for (int i = 0; i < D; ++i) {
+        box.lo[i] = std::max(box.lo[i], limit.lo[i]);
+        box.hi[i] = std::min(box.hi[i], limit.hi[i]);
+      }
     });
     return best;
   }
@@ -87,9 +137,10 @@ class Simplex_search {
     Coords<D> centre;
     for (int j = 0; j < D; ++j) centre[j] = ball.bounded ? 0.5 * (ball.lo[j] + ball.hi[j]) : ps_.coords[s[0]][j];
     visit_rings(ps_.grid.cell_of_point(centre), [&](Index q) {
-      if (!empty || std::find(s.begin(), s.end(), q) != s.end()) return;
-      if (ball.bounded && !in_box(ball, q)) return;
+      if (!empty || std::find(s.begin(), s.end(), q) != s.end()) return false;
+      if (ball.bounded && !in_box(ball, q)) return false;
       if (ps_.inside_sphere(s, q)) empty = false;
+      return !empty;
     }, [&](Cell_box<D>& box) {
       if (ball.bounded) box = ps_.grid.cells_meeting(ball.lo, ball.hi);
       if (!empty) box.hi[0] = box.lo[0] - 1;  // found one: stop
@@ -121,7 +172,7 @@ class Simplex_search {
 
   /// Visits the points of the cells in rings of growing Chebyshev radius around
   /// `start`, restricted to the search box, which `bound(box)` may shrink after
-  /// each point (an empty box stops the search). Stops once every cell of the
+  /// a point whose visit returned true (an empty box stops the search). Stops once every cell of the
   /// box has been visited. Cost: the cells of the rings met, each once.
   template <class Visit, class Bound>
   void visit_rings(const std::array<int, D>& start, Visit&& visit, Bound&& bound) {
@@ -159,15 +210,34 @@ class Simplex_search {
       if (contains(box, c)) {
         const std::size_t cell = grid.linear(c);
         ++stats_.cells_visited;
-        for (const Index* q = grid.begin(cell); q != grid.end(cell); ++q) {
-          visit(*q);
+        bool changed = false;
+        for (const Index* q = grid.begin(cell); q != grid.end(cell); ++q) changed |= visit(*q);
+        if (changed) {
           bound(box);
+          if (is_empty(box)) return false;
         }
-        if (is_empty(box)) return false;
       }
       int i = 0;
       for (; i < D && c[i] == cells.hi[i]; ++i) c[i] = cells.lo[i];
       if (i == D) return true;
+      ++c[i];
+    }
+  }
+
+  static bool wide(const Cell_box<D>& b) {
+    for (int i = 0; i < D; ++i)
+      if (b.hi[i] - b.lo[i] > 3) return true;
+    return false;
+  }
+
+  template <class Fn>
+  void for_each_cell(const Cell_box<D>& cells, Fn&& fn) const {
+    std::array<int, D> c = cells.lo;
+    for (;;) {
+      fn(ps_.grid.linear(c));
+      int i = 0;
+      for (; i < D && c[i] == cells.hi[i]; ++i) c[i] = cells.lo[i];
+      if (i == D) return;
       ++c[i];
     }
   }

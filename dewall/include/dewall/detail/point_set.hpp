@@ -25,7 +25,26 @@ struct Point_set {
 
   Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, double cells_per_point)
       : kernel(k), points(std::move(pts)), coords(approximate(k, points)), input_index(std::move(input)),
-        grid(coords, cells_per_point) {}
+        grid(coords, cells_per_point) {
+    // Renumber the points in cell order, so that a cell's points and their
+    // coordinates are contiguous in memory (the grid is then rebuilt, and
+    // lists each cell's points as consecutive local indices).
+    std::vector<Index> order;
+    order.reserve(size());
+    for (std::size_t c = 0; c < grid.cell_count(); ++c) order.insert(order.end(), grid.begin(c), grid.end(c));
+    std::vector<const Point*> p(size());
+    std::vector<Coords<D>> x(size());
+    std::vector<std::size_t> in(size());
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      p[i] = points[order[i]];
+      x[i] = coords[order[i]];
+      in[i] = input_index[order[i]];
+    }
+    points.swap(p);
+    coords.swap(x);
+    input_index.swap(in);
+    grid = Uniform_grid<D>(coords, cells_per_point);
+  }
 
   std::size_t size() const { return points.size(); }
   std::span<const Coords<D>> coords_for_checks() const { return coords; }

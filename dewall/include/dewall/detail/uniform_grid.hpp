@@ -84,6 +84,9 @@ class Uniform_grid {
   }
 
   std::size_t cell_count() const { return cell_start_.size() - 1; }
+  /// The bounding box of the points.
+  const Coords<D>& lower() const { return lo_; }
+  const Coords<D>& upper() const { return hi_; }
   std::size_t max_points_in_cell() const { return max_points_in_cell_; }
   const std::array<int, D>& dims() const { return dims_; }
 

@@ -6,15 +6,22 @@
 //  4. While AFL_α is not empty: take a face, build the simplex on its outer side
 //     (make_simplex.hpp), emit it, and Update its other faces into the list of
 //     their class.
-//  5. Recurse on (P1, AFL_1) and (P2, AFL_2).
+//  5. Recurse on (P1, AFL_1) and (P2, AFL_2); near the top, on separate cores.
 // Below the top level an empty AFL ends the recursion: every simplex lying in
 // P1 shares a face with the wall or with another such simplex (the region they
 // cover is bounded by wall simplices and the hull), so none is missed. The
 // search for an apex uses the whole point set; the apex of a face of AFL_1 lies
 // in P1 anyway, since a simplex with vertices on both sides is a wall simplex
 // and was built with the wall.
+//
+// Output order is the depth-first order (wall, then P1's part, then P2's)
+// whatever the number of threads: parallel subproblems write to their own
+// buffers, appended in that order.
 #pragma once
 
+#include <tbb/parallel_invoke.h>
+
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -29,22 +36,31 @@ struct Wall_stats {
   std::size_t max_depth = 0;
 };
 
-template <class K, class Emit>
+template <class K>
 class Wall_builder {
   static constexpr int D = K::dimension;
 
  public:
-  Wall_builder(const Point_set<K>& ps, Emit& emit) : ps_(ps), search_(ps), emit_(emit) {}
+  /// parallel_depth: recursion levels whose two subproblems run as parallel
+  /// tasks (0: serial).
+  Wall_builder(const Point_set<K>& ps, int parallel_depth) : ps_(ps), parallel_depth_(parallel_depth) {}
 
-  void run(std::span<Index> points) { recurse(points, Active_face_list<D>{}, 0, true); }
+  /// Appends the simplices of the triangulation of `points` to `out`.
+  void run(std::span<Index> points, std::vector<Simplex<D>>& out) {
+    Simplex_search<K> search(ps_);
+    Wall_stats stats;
+    recurse(points, Active_face_list<D>{}, 0, true, out, search, stats);
+    merge(search.stats(), stats);
+  }
 
   const Wall_stats& stats() const { return stats_; }
-  const Search_stats& search_stats() const { return search_.stats(); }
+  const Search_stats& search_stats() const { return search_stats_; }
 
  private:
-  void recurse(std::span<Index> points, Active_face_list<D> afl, std::size_t depth, bool top) {
+  void recurse(std::span<Index> points, Active_face_list<D> afl, std::size_t depth, bool top,
+               std::vector<Simplex<D>>& out, Simplex_search<K>& search, Wall_stats& stats) {
     if (!top && afl.empty()) return;
-    stats_.max_depth = std::max(stats_.max_depth, depth);
+    stats.max_depth = std::max(stats.max_depth, depth);
     std::size_t side1_size = 0;
     const auto split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
     DEWALL_ASSERT(split.has_value());  // faces need two distinct points
@@ -54,39 +70,64 @@ class Wall_builder {
       for (Index v : f) n1 += split->on_side1(ps_.coords[v]);
       return n1 == D ? afl1 : n1 == 0 ? afl2 : wall;
     };
-    const std::size_t before = stats_.simplices;
+    const std::size_t before = out.size();
     auto add = [&](const Simplex<D>& s, int skip) {
-      emit_(s);
-      ++stats_.simplices;
+      out.push_back(s);
       for (int i = 0; i <= D; ++i)
         if (i != skip) {
           const Face<D> g = opposite_face<D>(s, i);
           classify(g).update(g);
         }
     };
-    if (top) add(first_simplex(ps_, search_, points, *split), -1);
+    if (top) add(first_simplex(ps_, search, points, *split), -1);
     while (!afl.empty()) {
       const Face<D> f = afl.pop();
       classify(f).update(f);
     }
     while (!wall.empty()) {
       const Face<D> f = wall.pop();
-      const auto apex = search_.make_simplex(f);
+      const auto apex = search.make_simplex(f);
       if (!apex) continue;  // a convex hull face
       Simplex<D> s;
       std::copy(f.begin(), f.end(), s.begin());
       s[D] = *apex;
       add(s, D);
     }
-    if (top) stats_.first_wall_simplices = stats_.simplices - before;
-    recurse(points.first(side1_size), std::move(afl1), depth + 1, false);
-    recurse(points.subspan(side1_size), std::move(afl2), depth + 1, false);
+    stats.simplices += out.size() - before;
+    if (top) stats.first_wall_simplices = out.size() - before;
+    const auto p1 = points.first(side1_size), p2 = points.subspan(side1_size);
+    if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
+      std::vector<Simplex<D>> out1, out2;
+      auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Simplex<D>>& o) {
+        Simplex_search<K> s(ps_);
+        Wall_stats st;
+        recurse(p, std::move(a), depth + 1, false, o, s, st);
+        merge(s.stats(), st);
+      };
+      tbb::parallel_invoke([&] { task(p1, afl1, out1); }, [&] { task(p2, afl2, out2); });
+      out.insert(out.end(), out1.begin(), out1.end());
+      out.insert(out.end(), out2.begin(), out2.end());
+    } else {
+      recurse(p1, std::move(afl1), depth + 1, false, out, search, stats);
+      recurse(p2, std::move(afl2), depth + 1, false, out, search, stats);
+    }
+  }
+
+  void merge(const Search_stats& s, const Wall_stats& w) {
+    const std::lock_guard lock(mutex_);
+    search_stats_.searches += s.searches;
+    search_stats_.cells_visited += s.cells_visited;
+    search_stats_.candidates += s.candidates;
+    stats_.simplices += w.simplices;
+    stats_.first_wall_simplices += w.first_wall_simplices;
+    stats_.max_depth = std::max(stats_.max_depth, w.max_depth);
   }
 
   const Point_set<K>& ps_;
-  Simplex_search<K> search_;
-  Emit& emit_;
+  int parallel_depth_;
+  std::mutex mutex_;
   Wall_stats stats_;
+  Search_stats search_stats_;
 };
 
 }  // namespace dewall::detail
