@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dewall/kernel/orientation.hpp"
@@ -71,6 +72,8 @@ void check_orientation(const std::vector<Point<D>>& points, Degeneracy degenerac
                        points);
   tally.check_stage<D>("orientation_d_interval", expected, orientation_d_interval<D>(refs),
                        tally.interval_undecided, points);
+  std::swap(refs[0], refs[1]);  // an odd permutation flips the sign
+  tally.check<D>("orientation_d, p_0 and p_1 swapped", -expected, orientation_d<D>(refs), points);
 }
 
 template <int D>
@@ -91,6 +94,9 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
                        tally.filter_undecided, points);
   tally.check_stage<D>("side_of_oriented_sphere_d_interval", expected,
                        side_of_oriented_sphere_d_interval<D>(refs), tally.interval_undecided, points);
+  std::swap(refs[0], refs[D]);  // an odd permutation of the simplex flips the sign
+  tally.check<D>("side_of_oriented_sphere_d, p_0 and p_D swapped", -expected, side_of_oriented_sphere_d<D>(refs),
+                 points);
 }
 
 }  // namespace
