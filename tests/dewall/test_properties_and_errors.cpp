@@ -118,10 +118,9 @@ std::string slurp(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-/// Runs the dewall CLI (path from the DEWALL_CLI environment variable, set by CTest).
+/// Runs the dewall CLI built with the tests (DEWALL_CLI_PATH, set by CMake).
 Cli_result run_cli(const std::string& args, const std::string& input_text = "") {
-  const char* cli = std::getenv("DEWALL_CLI");
-  REQUIRE(cli != nullptr);
+  const char* cli = DEWALL_CLI_PATH;
   const std::string dir = "cli_test_tmp";
   std::system(("mkdir -p " + dir).c_str());
   std::ofstream(dir + "/stdin.txt") << input_text;
