@@ -11,7 +11,8 @@
 //   DeWall recursion and wall .... detail/wall.hpp
 //   MakeFirstSimplex ............. detail/first_simplex.hpp
 //   active face lists, Update .... detail/active_face_list.hpp, detail/face.hpp
-//   MakeSimplex (dd-nearest) ..... detail/make_simplex.hpp, detail/ball_enclosure.hpp
+//   MakeSimplex (dd-nearest) ..... detail/make_simplex.hpp, detail/simplex_sphere.hpp,
+//                                  detail/face_side_filter.hpp, detail/pencil_rank.hpp
 //   uniform grid ................. detail/uniform_grid.hpp
 //   input checks, duplicates ..... detail/input.hpp
 #pragma once

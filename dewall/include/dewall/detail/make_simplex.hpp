@@ -11,7 +11,7 @@
 // Search. Cells are visited in rings of growing Chebyshev distance around the
 // cell of the face's centroid, so a good candidate is usually found first. Once
 // there is a best b, only cells meeting a box that provably contains the
-// closed ball of sphere(f, b) (ball_enclosure.hpp) can hold a better point; the
+// closed ball of sphere(f, b) (simplex_sphere.hpp) can hold a better point; the
 // box only shrinks, as each new sphere's outer part lies inside the previous
 // one. The search stops when a ring lies wholly outside that box. Points in a
 // visited cell but outside the box are skipped by the same proof. Floating
@@ -23,10 +23,9 @@
 #include <optional>
 #include <vector>
 
-#include "dewall/detail/ball_enclosure.hpp"
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/pencil_rank.hpp"
-#include "dewall/detail/sphere_filter.hpp"
+#include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
 
@@ -61,7 +60,7 @@ class Simplex_search {
     std::array<const Coords<D>*, D> fc;
     for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
     const Face_side_filter<D> side_filter(fc);
-    std::optional<Sphere_filter<D>> sphere_filter;
+    std::optional<Simplex_sphere<D>> sphere;
     auto consider = [&](Index q) {
       if (is_vertex(f, q) || q == best) return false;  // the seed is met again in the rings
       if (best && ball.bounded && !in_box(ball, q)) return false;
@@ -74,35 +73,40 @@ class Simplex_search {
         s[D] = *best;
         ++stats_.in_sphere_tests;
         std::optional<bool> inside;
-        if constexpr (kernel::approximate_coordinates_are_exact<K>) inside = sphere_filter->inside(ps_.coords[q]);
+        if constexpr (kernel::approximate_coordinates_are_exact<K>) inside = sphere->inside(ps_.coords[q]);
         if (!inside) inside = ps_.inside_sphere(s, q);
         if (!*inside) return false;
       }
       best = q;
       s[D] = q;
       ++stats_.best_changes;
-      ball = circumball_box<D>(coords_of(s));
-      if constexpr (kernel::approximate_coordinates_are_exact<K>) sphere_filter.emplace(coords_of(s));
+      sphere.emplace(coords_of(s));
+      ball = sphere->enclosing_box();
       return true;
     };
     const auto start = centroid_cell(f);
-    // Seed: the candidate of smallest pencil parameter among the cells next to
-    // the face is usually the apex, so the search box is small from the start.
-    if (const Pencil_rank<D> rank(fc, side_filter.normal()); rank.valid()) {
-      double best_t = std::numeric_limits<double>::infinity();
-      Index seed = 0;
+    // Rings 0 and 1 first, the candidate of smallest pencil parameter leading:
+    // it is usually the apex, so the search box is small from the start. Every
+    // point of these cells still goes through the exact `consider`.
+    {
+      const Pencil_rank<D> rank(fc, side_filter.normal());
       Cell_box<D> near;
       for (int i = 0; i < D; ++i) {
         near.lo[i] = std::max(start[i] - 1, 0);
         near.hi[i] = std::min(start[i] + 1, ps_.grid.dims()[i] - 1);
       }
+      near_.clear();
+      std::size_t lead = 0;
       for_each_cell(near, [&](std::size_t cell) {
+        stats_.cells_visited += 1;
         for (const Index* q = ps_.grid.begin(cell); q != ps_.grid.end(cell); ++q) {
-          const double t = rank(ps_.coords[*q]);
-          if (t < best_t && !is_vertex(f, *q)) best_t = t, seed = *q;
+          const double t = rank.valid() ? rank(ps_.coords[*q]) : 0.0;
+          if (near_.empty() || t < near_[lead].first) lead = near_.size();
+          near_.push_back({t, *q});
         }
       });
-      if (best_t < std::numeric_limits<double>::infinity()) consider(seed);
+      if (!near_.empty()) std::swap(near_[0], near_[lead]);
+      for (const auto& [t, q] : near_) consider(q);
     }
     // Far searches (no candidate next to the face: near the hull; or a large
     // sphere) are confined to the part of the grid on the outer side of f. A
@@ -118,7 +122,7 @@ class Simplex_search {
       return true;
     };
     if (!best && !clip()) return std::nullopt;
-    visit_rings(start, consider, [&](Cell_box<D>& box) {
+    visit_rings(start, 2, consider, [&](Cell_box<D>& box) {
       if (best && ball.bounded) box = ps_.grid.cells_meeting(ball.lo, ball.hi);
       if (!clipped && wide(box)) clip();
       for (int i = 0; i < D; ++i) {
@@ -132,11 +136,12 @@ class Simplex_search {
   /// True when no point is inside the (perturbed) circumsphere of the
   /// positively oriented simplex s: s is a Delaunay simplex. Exact.
   bool is_empty_sphere(const Simplex<D>& s) {
-    const Ball_box<D> ball = circumball_box<D>(coords_of(s));
+    const Simplex_sphere<D> sphere(coords_of(s));
+    const Ball_box<D> ball = sphere.enclosing_box();
     bool empty = true;
     Coords<D> centre;
     for (int j = 0; j < D; ++j) centre[j] = ball.bounded ? 0.5 * (ball.lo[j] + ball.hi[j]) : ps_.coords[s[0]][j];
-    visit_rings(ps_.grid.cell_of_point(centre), [&](Index q) {
+    visit_rings(ps_.grid.cell_of_point(centre), 0, [&](Index q) {
       if (!empty || std::find(s.begin(), s.end(), q) != s.end()) return false;
       if (ball.bounded && !in_box(ball, q)) return false;
       if (ps_.inside_sphere(s, q)) empty = false;
@@ -171,14 +176,14 @@ class Simplex_search {
   }
 
   /// Visits the points of the cells in rings of growing Chebyshev radius around
-  /// `start`, restricted to the search box, which `bound(box)` may shrink after
+  /// `start`, from `first_ring` on (the caller has visited the inner ones), restricted to the search box, which `bound(box)` may shrink after
   /// a point whose visit returned true (an empty box stops the search). Stops once every cell of the
   /// box has been visited. Cost: the cells of the rings met, each once.
   template <class Visit, class Bound>
-  void visit_rings(const std::array<int, D>& start, Visit&& visit, Bound&& bound) {
+  void visit_rings(const std::array<int, D>& start, int first_ring, Visit&& visit, Bound&& bound) {
     Cell_box<D> box = ps_.grid.all_cells();
     bound(box);
-    for (int r = 0; !is_empty(box) && !inside_cube(box, start, r - 1); ++r) {
+    for (int r = first_ring; !is_empty(box) && !inside_cube(box, start, r - 1); ++r) {
       // The shell of radius r: for each axis k and side, the slab c[k] = start[k] ± r,
       // with axes before k restricted to the open range (so no cell repeats).
       for (int k = 0; k < D; ++k) {
@@ -260,6 +265,7 @@ class Simplex_search {
   }
 
   const Point_set<K>& ps_;
+  std::vector<std::pair<double, Index>> near_;  // scratch: the points of rings 0 and 1, ranked
   Search_stats stats_;
 };
 

@@ -1,17 +1,21 @@
 // Interval arithmetic that needs no rounding-mode switch.
 //
 // Every operation is computed in the default round-to-nearest mode and its
-// bounds are then moved one ulp outward with nextafter. Round-to-nearest is
-// within half an ulp of the exact result (and exact for subnormal sums), so the
-// widened interval always contains it, including under gradual underflow: a
-// product that rounds to 0 becomes [-denorm_min, +denorm_min]. Overflow gives
-// an infinite bound, and inf - inf gives NaN; `sign()` reports such an interval
-// as undecided, so the cascade moves on to the exact stage.
+// bounds are then moved outward by at least one ulp: r ↦ r ∓ (|r|·2^-52 + 2^-1074).
+// Why this is enough: for r = m·2^e (1 ≤ |m| < 2) the step |r|·2^-52 is at least
+// ulp(r) = 2^(e−52), so the exact value r − step is at most the neighbour of r
+// and, rounding being monotone, so is its rounded value; the 2^-1074 term is
+// one subnormal ulp, which covers r = 0 and subnormal r. The exact result lies
+// within half an ulp of r (round-to-nearest; sums are exact when subnormal),
+// so the widened interval always contains it, including under gradual
+// underflow: a product that rounds to 0 becomes [-2^-1074, 2^-1074]. Overflow
+// gives an infinite or NaN bound; `sign()` reports such an interval as
+// undecided, so the cascade moves on to the exact stage.
 //
-// This costs two nextafter calls per operation instead of a rounding-mode
-// guard (CGAL's Protect_FPU_rounding); the stage only runs when the static
-// filter failed, so its speed matters little, and it stays correct whatever
-// the compiler does with the floating-point environment.
+// Two flops per bound instead of a rounding-mode guard (CGAL's
+// Protect_FPU_rounding) or a nextafter call: correct whatever the compiler does
+// with the floating-point environment, as long as it keeps IEEE double
+// arithmetic (no -ffast-math, which the build never enables).
 #pragma once
 
 #include <cmath>
@@ -43,8 +47,8 @@ class Interval {
     double lo = p[0], hi = p[0];
     for (double v : p) {
       if (std::isnan(v)) return nan_interval();
-      lo = std::fmin(lo, v);
-      hi = std::fmax(hi, v);
+      lo = v < lo ? v : lo;
+      hi = v > hi ? v : hi;
     }
     return outward(lo, hi);
   }
@@ -56,13 +60,13 @@ class Interval {
     double lo = q[0], hi = q[0];
     for (double v : q) {
       if (std::isnan(v)) return nan_interval();
-      lo = std::fmin(lo, v);
-      hi = std::fmax(hi, v);
+      lo = v < lo ? v : lo;
+      hi = v > hi ? v : hi;
     }
     return outward(lo, hi);
   }
   /// The largest absolute value in the interval.
-  double magnitude() const { return std::fmax(std::fabs(lo_), std::fabs(hi_)); }
+  double magnitude() const { return std::fabs(lo_) > std::fabs(hi_) ? std::fabs(lo_) : std::fabs(hi_); }
   Interval& operator+=(const Interval& b) { return *this = *this + b; }
   Interval& operator-=(const Interval& b) { return *this = *this - b; }
 
@@ -80,8 +84,8 @@ class Interval {
     return {n, n};
   }
   static Interval outward(double lo, double hi) {
-    constexpr double inf = std::numeric_limits<double>::infinity();
-    return {std::nextafter(lo, -inf), std::nextafter(hi, inf)};
+    constexpr double ulp_factor = 0x1p-52, subnormal_ulp = 0x1p-1074;
+    return {lo - (std::fabs(lo) * ulp_factor + subnormal_ulp), hi + (std::fabs(hi) * ulp_factor + subnormal_ulp)};
   }
   double lo_ = 0, hi_ = 0;
 };

@@ -1,0 +1,158 @@
+// Simplex_sphere: the circumsphere of one simplex, for the many queries of a
+// search: a proven in-sphere filter at the cost of a dot product per query,
+// and a box proven to contain the closed ball, for pruning the grid.
+//
+// Derivation. With y_i = s_i − s_0 (i = 1..D) and x = q − s_0, the lifted
+// determinant translated by s_0 and expanded along its row of s_0 is
+// (−1)^(D+1)·M', with M' = det[(y_1, |y_1|²); …; (y_D, |y_D|²); (x, |x|²)]. The
+// kernel's M (translated by q, side_of_sphere.hpp) is the same (D+2)×(D+2)
+// determinant expanded along q's row, and the predicate is (−1)^D·sign(M), so
+//   q inside the sphere  ⇔  M' < 0.
+// Expanding M' along its last row: M'(x) = Σ_j x_j·A_j + |x|²·A_L, where the
+// cofactors A are D×D determinants of the y rows, computed once per simplex by
+// the kernel's `determinant` with the bounds of error_bounds.hpp: A_L has the
+// orientation's rounding factors, each A_j one lifted column (D + 2 factors
+// instead of 1). A_L ≠ 0 for a non-degenerate simplex, and
+//   M'(x) = A_L·(|x − c|² − r²) with c = −A/(2·A_L), r = |c|,
+// so the same cofactors give the centre c (relative to s_0) and radius.
+//
+// In-sphere filter. Per query, S = fl(Σ_j x̂_j Â_j + l̂·Â_L) with l̂ = fl(Σ x̂_j²):
+// every term carries at most N = (D + 2) + 1 + D rounding factors, so
+//   |S − M'| ≤ γ_N·Σ_t |x̂_t|(|Â_t| + e_t) + (1 + γ_N)·Σ_t |x̂_t|·e_t
+// (t over the coordinates and the lifted term), covered together with the
+// rounding of the bound itself by the (1 + 2^-30) margin, plus 2^-1000 for
+// underflow in the products. Undecided cases go to the kernel's predicate.
+//
+// Box. c_j ∈ −[Â_j ± e_j] / (2·[Â_L ± e_L]) in interval arithmetic; then the ball
+// lies in s_0 + c ± max|c|.
+//
+// Scale. Simplices far outside [2^-50, 2^50] are first scaled by a power of two
+// (exact up to underflow of entries that are negligible, whose absolute error
+// ≤ 2^-1075 the allowances above cover); queries are scaled alike and the box
+// scaled back.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/kernel/determinant.hpp"
+#include "dewall/kernel/error_bounds.hpp"
+#include "dewall/kernel/interval.hpp"
+
+namespace dewall::detail {
+
+template <int D>
+struct Ball_box {
+  Coords<D> lo, hi;
+  bool bounded = false;  // false: no proven box (degenerate or extreme simplex); search everywhere
+};
+
+template <int D>
+class Simplex_sphere {
+ public:
+  explicit Simplex_sphere(const std::array<const Coords<D>*, D + 1>& s) : origin_(*s[0]) {
+    namespace eb = kernel::error_bounds;
+    kernel::Matrix<double, D> y;  // rows y_1..y_D
+    double largest = 0;
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) {
+        y[i][j] = (*s[i + 1])[j] - origin_[j];
+        largest = std::fmax(largest, std::fabs(y[i][j]));
+      }
+    if (!(largest >= 0x1p-50 && largest <= 0x1p50) && std::isfinite(largest) && largest > 0) {
+      exponent_ = std::ilogb(largest);
+      for (auto& row : y)
+        for (double& v : row) v = std::ldexp(v, -exponent_);
+    }
+    std::array<double, D> lift;
+    std::array<double, D + 1> col_max{};
+    for (int i = 0; i < D; ++i) {
+      double l = 0;
+      for (int j = 0; j < D; ++j) {
+        l += y[i][j] * y[i][j];
+        col_max[j] = std::fmax(col_max[j], std::fabs(y[i][j]));
+      }
+      lift[i] = l;
+      col_max[D] = std::fmax(col_max[D], l);
+    }
+    for (int j = 0; j < D; ++j)
+      if (!(col_max[j] >= eb::min_column_max && col_max[j] <= eb::max_column_max)) return;
+    // Cofactors of the last row of [y | lift; x | |x|²]: A_c = (−1)^(D+c)·det(top block without column c).
+    constexpr int lifted_factors = eb::expansion_factors(D) + (D - 1) + (D + 2);
+    for (int c = 0; c <= D; ++c) {
+      kernel::Matrix<double, D> minor;
+      double product = 1;
+      for (int i = 0; i < D; ++i)
+        for (int k = 0, m = 0; k <= D; ++k)
+          if (k != c) minor[i][m++] = k < D ? y[i][k] : lift[i];
+      for (int k = 0; k <= D; ++k)
+        if (k != c) product *= col_max[k];
+      const double value = kernel::determinant<double, D>(minor);
+      cofactor_[c] = (D + c) % 2 == 0 ? value : -value;
+      error_[c] = (c == D ? eb::orientation_epsilon(D) : eb::filter_epsilon(lifted_factors, D)) * product;
+    }
+    valid_ = true;
+  }
+
+  /// True/false when the filter proves q strictly inside / outside the sphere;
+  /// nothing when undecided (q on or near the sphere, or no valid filter).
+  std::optional<bool> inside(const Coords<D>& q) const {
+    if (!valid_) return std::nullopt;
+    namespace eb = kernel::error_bounds;
+    double s = 0, magnitude = 0, carried = 0, lifted = 0;
+    for (int j = 0; j < D; ++j) {
+      double x = q[j] - origin_[j];
+      if (exponent_ != 0) x = std::ldexp(x, -exponent_);
+      const double ax = std::fabs(x);
+      lifted += x * x;
+      s += x * cofactor_[j];
+      magnitude += ax * (std::fabs(cofactor_[j]) + error_[j]);
+      carried += ax * error_[j];
+    }
+    s += lifted * cofactor_[D];
+    magnitude += lifted * (std::fabs(cofactor_[D]) + error_[D]);
+    carried += lifted * error_[D];
+    constexpr double gamma = eb::gamma(2 * D + 3);
+    const double bound = (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
+    if (s < -bound) return true;
+    if (s > bound) return false;
+    return std::nullopt;
+  }
+
+  /// A box containing the closed ball.
+  Ball_box<D> enclosing_box() const {
+    using kernel::Interval;
+    Ball_box<D> box;
+    if (!valid_) return box;
+    const Interval twice_al = Interval(2.0) * (Interval(cofactor_[D]) + Interval(-error_[D], error_[D]));
+    if (!twice_al.sign()) return box;
+    std::array<Interval, D> centre;
+    Interval radius2(0.0);
+    const Interval scale(std::ldexp(1.0, exponent_));
+    for (int j = 0; j < D; ++j) {
+      const Interval offset = -(Interval(cofactor_[j]) + Interval(-error_[j], error_[j])) / twice_al * scale;
+      centre[j] = Interval(origin_[j]) + offset;
+      const double m = offset.magnitude();
+      radius2 += Interval(m) * Interval(m);
+    }
+    const double radius = (Interval(std::sqrt(radius2.hi())) * Interval(1 + 0x1p-50)).hi();
+    for (int j = 0; j < D; ++j) {
+      box.lo[j] = (centre[j] - Interval(radius)).lo();
+      box.hi[j] = (centre[j] + Interval(radius)).hi();
+      if (!std::isfinite(box.lo[j]) || !std::isfinite(box.hi[j])) return box;
+    }
+    box.bounded = true;
+    return box;
+  }
+
+ private:
+  Coords<D> origin_;
+  std::array<double, D + 1> cofactor_{}, error_{};
+  int exponent_ = 0;
+  bool valid_ = false;
+};
+
+}  // namespace dewall::detail
