@@ -18,6 +18,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "dewall/detail/uniform_grid.hpp"
@@ -31,7 +32,10 @@ namespace dewall::detail {
 template <int D>
 class Face_side_filter {
  public:
-  Face_side_filter(const std::array<const Coords<D>*, D>& f) : origin_(*f[0]) {
+  /// f: the face's vertex coordinates; [lo, hi]: a box holding every query
+  /// (the grid's bounding box), which gives a per-face error bound.
+  Face_side_filter(const std::array<const Coords<D>*, D>& f, const Coords<D>& lo, const Coords<D>& hi)
+      : origin_(*f[0]) {
     namespace eb = kernel::error_bounds;
     std::array<std::array<double, D>, D - 1> rows;
     std::array<double, D> col_max{};
@@ -59,6 +63,14 @@ class Face_side_filter {
       cofactor_[j] = (D - 1 + j) % 2 == 0 ? value : -value;
       error_[j] = eb::orientation_epsilon(D - 1) * product;
     }
+    // The per-query bound below with |x_j| replaced by its largest value in the box.
+    double magnitude = 0, carried = 0;
+    for (int j = 0; j < D; ++j) {
+      const double reach = std::fmax(std::fabs(lo[j] - origin_[j]), std::fabs(hi[j] - origin_[j]));
+      magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);
+      carried += reach * error_[j];
+    }
+    region_bound_ = bound(magnitude, carried);
   }
 
   /// The cofactors: orientation(f, q) ≈ Σ_j (q_j − f0_j)·C_j, so C is a normal
@@ -98,28 +110,36 @@ class Face_side_filter {
     return true;
   }
 
+  static double bound(double magnitude, double carried) {
+    constexpr double gamma = kernel::error_bounds::gamma(D + 1);
+    return (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
+  }
+
   /// The sign of orientation(f, q) when the filter can prove it.
+  /// \pre q lies in the box given to the constructor.
   std::optional<kernel::Sign> operator()(const Coords<D>& q) const {
     if (!valid_) return std::nullopt;
     namespace eb = kernel::error_bounds;
-    double s = 0, magnitude = 0, carried = 0;
+    double s = 0;
+    for (int j = 0; j < D; ++j) s += (q[j] - origin_[j]) * cofactor_[j];
+    if (s > region_bound_) return kernel::POSITIVE;  // the common case: one bound per face
+    if (s < -region_bound_) return kernel::NEGATIVE;
+    double magnitude = 0, carried = 0;
     for (int j = 0; j < D; ++j) {
-      const double x = q[j] - origin_[j];
-      const double ax = std::fabs(x);
-      s += x * cofactor_[j];
+      const double ax = std::fabs(q[j] - origin_[j]);
       magnitude += ax * (std::fabs(cofactor_[j]) + error_[j]);
       carried += ax * error_[j];
     }
-    constexpr double gamma = eb::gamma(D + 1);
-    const double bound = (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
-    if (s > bound) return kernel::POSITIVE;
-    if (s < -bound) return kernel::NEGATIVE;
+    const double b = bound(magnitude, carried);
+    if (s > b) return kernel::POSITIVE;
+    if (s < -b) return kernel::NEGATIVE;
     return std::nullopt;
   }
 
  private:
   Coords<D> origin_;
   std::array<double, D> cofactor_{}, error_{};
+  double region_bound_ = std::numeric_limits<double>::infinity();
   bool valid_ = false;
 };
 

@@ -59,7 +59,7 @@ class Simplex_search {
     Ball_box<D> ball;
     std::array<const Coords<D>*, D> fc;
     for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
-    const Face_side_filter<D> side_filter(fc);
+    const Face_side_filter<D> side_filter(fc, ps_.grid.lower(), ps_.grid.upper());
     std::optional<Simplex_sphere<D>> sphere;
     auto consider = [&](Index q) {
       if (is_vertex(f, q) || q == best) return false;  // the seed is met again in the rings
@@ -73,7 +73,8 @@ class Simplex_search {
         s[D] = *best;
         ++stats_.in_sphere_tests;
         std::optional<bool> inside;
-        if constexpr (kernel::approximate_coordinates_are_exact<K>) inside = sphere->inside(ps_.coords[q]);
+        if constexpr (kernel::approximate_coordinates_are_exact<K>)
+          inside = ball.bounded ? sphere->inside_box(ps_.coords[q]) : sphere->inside(ps_.coords[q]);
         if (!inside) inside = ps_.inside_sphere(s, q);
         if (!*inside) return false;
       }

@@ -95,13 +95,41 @@ class Simplex_sphere {
       error_[c] = (c == D ? eb::orientation_epsilon(D) : eb::filter_epsilon(lifted_factors, D)) * product;
     }
     valid_ = true;
+    box_ = compute_box();
+    if (box_.bounded) {  // the per-query bound below, for the worst query in the box
+      double magnitude = 0, carried = 0, lifted = 0;
+      for (int j = 0; j < D; ++j) {
+        double reach = std::fmax(std::fabs(box_.lo[j] - origin_[j]), std::fabs(box_.hi[j] - origin_[j]));
+        if (exponent_ != 0) reach = std::ldexp(reach, -exponent_);
+        lifted += reach * reach;
+        magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);
+        carried += reach * error_[j];
+      }
+      magnitude += lifted * (std::fabs(cofactor_[D]) + error_[D]);
+      carried += lifted * error_[D];
+      box_bound_ = bound(magnitude, carried);
+    }
+  }
+
+  /// As `inside`, faster. \pre q lies in enclosing_box() (which is bounded).
+  std::optional<bool> inside_box(const Coords<D>& q) const {
+    double s = 0, lifted = 0;
+    for (int j = 0; j < D; ++j) {
+      double x = q[j] - origin_[j];
+      if (exponent_ != 0) x = std::ldexp(x, -exponent_);
+      lifted += x * x;
+      s += x * cofactor_[j];
+    }
+    s += lifted * cofactor_[D];
+    if (s < -box_bound_) return true;
+    if (s > box_bound_) return false;
+    return inside(q);
   }
 
   /// True/false when the filter proves q strictly inside / outside the sphere;
   /// nothing when undecided (q on or near the sphere, or no valid filter).
   std::optional<bool> inside(const Coords<D>& q) const {
     if (!valid_) return std::nullopt;
-    namespace eb = kernel::error_bounds;
     double s = 0, magnitude = 0, carried = 0, lifted = 0;
     for (int j = 0; j < D; ++j) {
       double x = q[j] - origin_[j];
@@ -115,15 +143,22 @@ class Simplex_sphere {
     s += lifted * cofactor_[D];
     magnitude += lifted * (std::fabs(cofactor_[D]) + error_[D]);
     carried += lifted * error_[D];
-    constexpr double gamma = eb::gamma(2 * D + 3);
-    const double bound = (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
-    if (s < -bound) return true;
-    if (s > bound) return false;
+    const double b = bound(magnitude, carried);
+    if (s < -b) return true;
+    if (s > b) return false;
     return std::nullopt;
   }
 
   /// A box containing the closed ball.
-  Ball_box<D> enclosing_box() const {
+  const Ball_box<D>& enclosing_box() const { return box_; }
+
+ private:
+  static double bound(double magnitude, double carried) {
+    constexpr double gamma = kernel::error_bounds::gamma(2 * D + 3);
+    return (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
+  }
+
+  Ball_box<D> compute_box() const {
     using kernel::Interval;
     Ball_box<D> box;
     if (!valid_) return box;
@@ -148,11 +183,12 @@ class Simplex_sphere {
     return box;
   }
 
- private:
   Coords<D> origin_;
   std::array<double, D + 1> cofactor_{}, error_{};
   int exponent_ = 0;
   bool valid_ = false;
+  Ball_box<D> box_;
+  double box_bound_ = std::numeric_limits<double>::infinity();
 };
 
 }  // namespace dewall::detail
