@@ -15,6 +15,7 @@
 #include <array>
 #include <bit>
 #include <cstddef>
+#include <type_traits>
 
 namespace dewall::kernel {
 
@@ -43,43 +44,48 @@ struct Minor_masks {
 
 }  // namespace detail
 
+namespace detail {
+template <int K>
+inline constexpr Minor_masks<K> minor_masks{};
+
+/// f(integral_constant<int, i>) for i = Begin … End−1, unrolled at compile time.
+template <int Begin, int End, class F>
+[[gnu::always_inline]] inline void static_for(F&& f) {
+  if constexpr (Begin < End) {
+    f(std::integral_constant<int, Begin>{});
+    static_for<Begin + 1, End>(f);
+  }
+}
+}  // namespace detail
+
 /// The determinant of `a`, computed by the shared-minor Laplace expansion above.
-/// T must support copy, +, -, * (a commutative ring). Complexity: K·2^(K-1)
-/// products and as many additions.
+/// Same operations in the same order as before, but every loop is unrolled at
+/// compile time, so masks, signs and indices are constants.
 template <class T, int K>
 [[gnu::always_inline]] inline T determinant(const Matrix<T, K>& a) {
   static_assert(K >= 1 && K <= 8);
   if constexpr (K == 1) {
     return a[0][0];
   } else {
-    static constexpr detail::Minor_masks<K> table{};
-    std::array<T, (1 << K)> minor{};
-    // Level 1: the minors of the last row are its entries.
-    for (int j = 0; j < K; ++j) minor[std::size_t{1} << j] = a[K - 1][static_cast<std::size_t>(j)];
-    for (int r = 2; r <= K; ++r) {
+    constexpr const auto& table = detail::minor_masks<K>;
+    std::array<T, (1 << K)> minor;
+    detail::static_for<0, K>([&](auto j) { minor[std::size_t{1} << j] = a[K - 1][j]; });
+    detail::static_for<2, K + 1>([&](auto r) {
       const auto& row = a[static_cast<std::size_t>(K - r)];
-      for (int t = table.level_begin[static_cast<std::size_t>(r)];
-           t < table.level_begin[static_cast<std::size_t>(r + 1)]; ++t) {
-        const unsigned mask = table.masks[static_cast<std::size_t>(t)];
-        bool first = true;
-        bool negate = false;
-        T sum{};
-        for (int j = 0; j < K; ++j) {
-          if (!(mask & (1u << j))) continue;
-          T term = row[static_cast<std::size_t>(j)] * minor[mask & ~(1u << j)];
-          if (first) {
-            sum = term;
-            first = false;
-          } else if (negate) {
-            sum -= term;
-          } else {
-            sum += term;
+      detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
+        constexpr unsigned mask = table.masks[t];
+        constexpr int lowest = std::countr_zero(mask);
+        T sum = row[lowest] * minor[mask & ~(1u << lowest)];
+        detail::static_for<lowest + 1, K>([&](auto j) {
+          if constexpr ((mask & (1u << j)) != 0) {
+            constexpr bool negate = std::popcount(mask & ((1u << j) - 1)) % 2 == 1;
+            if constexpr (negate) sum -= row[j] * minor[mask & ~(1u << j)];
+            else sum += row[j] * minor[mask & ~(1u << j)];
           }
-          negate = !negate;
-        }
+        });
         minor[mask] = sum;
-      }
-    }
+      });
+    });
     return minor[(1u << K) - 1];
   }
 }

@@ -34,8 +34,8 @@ namespace dewall::kernel::stages {
 /// max(m, |v|) without a libm call. An infinite v wins and then fails the
 /// domain check; v is never NaN (differences of finite doubles).
 inline double max_abs(double m, double v) {
-  const double a = v < 0 ? -v : v;
-  return a > m ? a : m;
+  const double a = std::fabs(v);  // andpd
+  return m < a ? a : m;           // maxsd: branch-free
 }
 
 template <int D, int N>
@@ -45,7 +45,7 @@ using Point_refs = std::array<const Point_d<D>*, N>;
 /// bound ε·Π_j M̂_j (error_bounds.hpp). Returns nothing when undecided or when
 /// the column maxima leave the filter's domain.
 template <class Recipe, int D>
-std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p) {
+[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p) {
   constexpr int K = Recipe::size;
   const auto m = Recipe::template matrix<double>(
       [&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });

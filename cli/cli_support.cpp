@@ -1,0 +1,62 @@
+#include <chrono>
+#include <span>
+#include <vector>
+
+#include "cli.hpp"
+#include "dewall/dewall.hpp"
+
+namespace dewall::cli {
+namespace {
+
+template <int D>
+Run triangulate_table(const io::Point_table& table) {
+  std::vector<kernel::Point_d<D>> points(table.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
+  Run run;
+  run.simplices.vertices_per_simplex = D + 1;
+  const auto start = std::chrono::steady_clock::now();
+  run.stats = triangulate_to<kernel::Filtered_kernel_d<D>>(
+      std::span<const kernel::Point_d<D>>(points),
+      [&](const Simplex<D>& s) { run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end()); });
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return run;
+}
+
+}  // namespace
+
+Run triangulate_any(const io::Point_table& table) {
+  switch (table.dimension) {
+    case 2: return triangulate_table<2>(table);
+    case 3: return triangulate_table<3>(table);
+    case 4: return triangulate_table<4>(table);
+    case 5: return triangulate_table<5>(table);
+    case 6: return triangulate_table<6>(table);
+  }
+  throw Usage_error("dimension " + std::to_string(table.dimension) + " is not supported (2 to 6)");
+}
+
+void print_stats(std::FILE* out, const Run& run) {
+  const auto& s = run.stats;
+  std::fprintf(out,
+               "points=%zu distinct=%zu simplices=%zu first_wall_simplices=%zu recursion_depth=%zu\n"
+               "grid_cells=%zu max_points_in_cell=%zu mean_cells_per_simplex=%.2f candidates_per_search=%.2f\n"
+               "build_s=%.6f\n",
+               s.input_points, s.distinct_points, s.simplices, s.first_wall_simplices, s.recursion_depth,
+               s.grid_cells, s.max_points_in_cell, s.mean_cells_per_simplex(),
+               s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0, run.seconds);
+}
+
+std::string next_arg(int& i, int argc, char** argv) {
+  if (i + 1 >= argc) throw Usage_error(std::string("option ") + argv[i] + " needs a value");
+  return argv[++i];
+}
+
+long parse_long(const std::string& s, const char* what) {
+  char* end = nullptr;
+  const long v = std::strtol(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || v < 0) throw Usage_error(std::string("invalid ") + what + ": '" + s + "'");
+  return v;
+}
+
+}  // namespace dewall::cli
