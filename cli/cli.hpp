@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
@@ -37,8 +38,19 @@ Run triangulate_any(const io::Point_table& table);
 /// Prints the paper's Table 1 counters and build_s=SECONDS.
 void print_stats(std::FILE* out, const Run& run);
 
-/// The commands: each returns the exit status; argv[1] is the command name.
-int command_triangulate(int argc, char** argv);
-int command_demo(int argc, char** argv);
+/// A subcommand: `run` returns the exit status (argv[1] is the command name);
+/// `usage` is its paragraph of the help text.
+struct Command {
+  const char* name;
+  int (*run)(int argc, char** argv);
+  const char* usage;
+};
+
+/// Registers a command; each cli/command_<name>.cpp holds one
+///   static const bool registered = dewall::cli::register_command({...});
+/// so adding a command touches no shared file.
+bool register_command(const Command& c);
+/// The registered commands, sorted by name.
+const std::vector<Command>& commands();
 
 }  // namespace dewall::cli

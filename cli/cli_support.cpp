@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <chrono>
 #include <span>
 #include <vector>
@@ -46,6 +47,23 @@ void print_stats(std::FILE* out, const Run& run) {
                s.grid_cells, s.max_points_in_cell, s.mean_cells_per_simplex(),
                s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0, run.seconds);
 }
+
+namespace {
+std::vector<Command>& registry() {
+  static std::vector<Command> r;
+  return r;
+}
+}  // namespace
+
+bool register_command(const Command& c) {
+  auto& r = registry();
+  r.insert(std::upper_bound(r.begin(), r.end(), c,
+                            [](const Command& a, const Command& b) { return std::string(a.name) < b.name; }),
+           c);
+  return true;
+}
+
+const std::vector<Command>& commands() { return registry(); }
 
 std::string next_arg(int& i, int argc, char** argv) {
   if (i + 1 >= argc) throw Usage_error(std::string("option ") + argv[i] + " needs a value");

@@ -15,7 +15,6 @@ int command_demo(int argc, char** argv) {
     if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
     else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
     else if (a == "--seed") seed = static_cast<unsigned long long>(parse_long(next_arg(i, argc, argv), "seed"));
-    else if (a == "-h" || a == "--help") { throw Usage_error(""); }
     else throw Usage_error("unknown option '" + a + "'");
   }
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
@@ -38,5 +37,13 @@ int command_demo(int argc, char** argv) {
               run.stats.simplices, run.seconds);
   return 0;
 }
+
+
+namespace {
+const bool registered = register_command({"demo", command_demo,
+    "  demo [--points N] [--dim D] [--seed S]\n"
+    "      Generates N uniform random points in the unit cube of E^D (default\n"
+    "      100000 points, D = 3), triangulates them and prints a summary.\n"});
+}  // namespace
 
 }  // namespace dewall::cli

@@ -13,7 +13,6 @@ int command_triangulate(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
     else if (a == "--stats") stats = true;
-    else if (a == "-h" || a == "--help") { throw Usage_error(""); }
     else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
     else if (input.empty()) input = a;
     else throw Usage_error("unexpected argument '" + a + "'");
@@ -35,5 +34,16 @@ int command_triangulate(int argc, char** argv) {
   if (stats) print_stats(stderr, run);
   return 0;
 }
+
+
+namespace {
+const bool registered = register_command({"triangulate", command_triangulate,
+    "  triangulate INPUT [-o OUTPUT] [--stats]\n"
+    "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
+    "      plain text (one point per line, '#' comments), rbox output, or TetGen .node.\n"
+    "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
+    "      (default: standard output); TetGen .ele when OUTPUT ends in .ele.\n"
+    "      --stats prints the paper's Table 1 counters and build_s=SECONDS on stderr.\n"});
+}  // namespace
 
 }  // namespace dewall::cli

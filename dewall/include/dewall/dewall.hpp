@@ -20,6 +20,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "dewall/detail/input.hpp"
@@ -40,7 +41,9 @@ using Simplex = std::array<std::uint32_t, D + 1>;
 /// each simplex (a dewall::Simplex<D> of input indices, positively oriented), in
 /// DeWall's depth-first order (the same for any number of threads). The
 /// simplices are handed over once the triangulation is complete; true streaming
-/// (memory near the size of the walls) is future work.
+/// (memory near the size of the walls) is future work. A sink callable as
+/// sink(simplex, level) also receives the recursion level of the wall that
+/// built the simplex (0: the first wall; the paper's Figures 2, 4, 5).
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D.
 /// Complexity: expected O(n log n) on uniformly distributed points.
@@ -61,12 +64,13 @@ Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& si
   detail::Wall_builder<K> builder(ps, options.parallel_depth);
   std::vector<detail::Index> all(ps.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<detail::Index>(i);
-  std::vector<detail::Simplex<D>> local;
+  std::vector<detail::Built_simplex<D>> local;
   builder.run(all, local);
   for (const auto& s : local) {
     Simplex<D> out;
-    for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s[i]]);
-    sink(out);
+    for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s.vertices[i]]);
+    if constexpr (std::is_invocable_v<Sink, const Simplex<D>&, int>) sink(out, static_cast<int>(s.wall_level));
+    else sink(out);
   }
 
   Statistics st;

@@ -36,6 +36,13 @@ struct Wall_stats {
   std::size_t max_depth = 0;
 };
 
+/// A simplex with the recursion level of the wall that built it (0: the first wall).
+template <int D>
+struct Built_simplex {
+  Simplex<D> vertices;
+  std::uint8_t wall_level;
+};
+
 template <class K>
 class Wall_builder {
   static constexpr int D = K::dimension;
@@ -46,7 +53,7 @@ class Wall_builder {
   Wall_builder(const Point_set<K>& ps, int parallel_depth) : ps_(ps), parallel_depth_(parallel_depth) {}
 
   /// Appends the simplices of the triangulation of `points` to `out`.
-  void run(std::span<Index> points, std::vector<Simplex<D>>& out) {
+  void run(std::span<Index> points, std::vector<Built_simplex<D>>& out) {
     Simplex_search<K> search(ps_);
     Wall_stats stats;
     recurse(points, Active_face_list<D>{}, 0, true, out, search, stats);
@@ -58,7 +65,7 @@ class Wall_builder {
 
  private:
   void recurse(std::span<Index> points, Active_face_list<D> afl, std::size_t depth, bool top,
-               std::vector<Simplex<D>>& out, Simplex_search<K>& search, Wall_stats& stats) {
+               std::vector<Built_simplex<D>>& out, Simplex_search<K>& search, Wall_stats& stats) {
     if (!top && afl.empty()) return;
     stats.max_depth = std::max(stats.max_depth, depth);
     std::size_t side1_size = 0;
@@ -72,7 +79,7 @@ class Wall_builder {
     };
     const std::size_t before = out.size();
     auto add = [&](const Simplex<D>& s, int skip) {
-      out.push_back(s);
+      out.push_back({s, static_cast<std::uint8_t>(std::min<std::size_t>(depth, 255))});
       for (int i = 0; i <= D; ++i)
         if (i != skip) {
           const Face<D> g = opposite_face<D>(s, i);
@@ -97,8 +104,8 @@ class Wall_builder {
     if (top) stats.first_wall_simplices = out.size() - before;
     const auto p1 = points.first(side1_size), p2 = points.subspan(side1_size);
     if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
-      std::vector<Simplex<D>> out1, out2;
-      auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Simplex<D>>& o) {
+      std::vector<Built_simplex<D>> out1, out2;
+      auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Built_simplex<D>>& o) {
         Simplex_search<K> s(ps_);
         Wall_stats st;
         recurse(p, std::move(a), depth + 1, false, o, s, st);
