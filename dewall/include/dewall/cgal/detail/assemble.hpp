@@ -1,0 +1,172 @@
+// The part of the CGAL builders that does not depend on which CGAL
+// triangulation is built: reading the caller's range (points, or points with
+// info), converting to doubles, and wiring DeWall's simplices into a
+// triangulation data structure through a small access policy.
+#pragma once
+
+#include <CGAL/number_utils.h>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <iterator>
+#include <limits>
+#include <optional>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "dewall/cgal/detail/facet_matcher.hpp"
+#include "dewall/detail/assert.hpp"
+#include "dewall/dewall.hpp"
+#include "dewall/error.hpp"
+#include "dewall/kernel/point.hpp"
+
+namespace dewall::cgal::detail {
+
+/// True when Item is std::pair<Point, Info> for some Info (CGAL's range insert
+/// with info takes exactly that), false when it is Point itself.
+template <class Item, class Point>
+struct Item_traits {
+  static_assert(std::is_convertible_v<Item, Point>,
+                "the range must hold the triangulation's Point or std::pair<Point, Info>");
+  static constexpr bool has_info = false;
+  static const Point& point(const Item& item) { return item; }
+};
+template <class Point, class Info>
+struct Item_traits<std::pair<Point, Info>, Point> {
+  static constexpr bool has_info = true;
+  static const Point& point(const std::pair<Point, Info>& item) { return item.first; }
+};
+
+/// The double nearest to x, and whether it equals x. For double FT the
+/// conversion is the identity and the check compiles away.
+template <class FT>
+bool to_exact_double(const FT& x, double& out) {
+  if constexpr (std::is_same_v<std::remove_cvref_t<FT>, double>) {
+    out = x;
+    return true;
+  } else {
+    out = CGAL::to_double(x);
+    return FT(out) == x;
+  }
+}
+
+/// Converts the caller's points to DeWall's points. Returns nullopt when some
+/// coordinate is not a double (the builders then let CGAL insert the points:
+/// triangulating rounded coordinates could give cells that are inverted or not
+/// Delaunay for the true points). Throws Invalid_input on NaN or infinity.
+/// `coord(p, i)` yields the i-th Cartesian coordinate of p.
+template <int D, class Items, class Traits, class Coord>
+std::optional<std::vector<kernel::Point_d<D>>> to_dewall_points(const Items& items, Coord&& coord) {
+  std::vector<kernel::Point_d<D>> out(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const auto& p = Traits::point(items[i]);
+    for (int j = 0; j < D; ++j) {
+      if (!to_exact_double(coord(p, j), out[i][j])) return std::nullopt;
+    }
+    if (!kernel::is_finite(out[i]))
+      throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
+  }
+  return out;
+}
+
+/// DeWall's triangulation of `points`, or nullopt when DeWall cannot build
+/// one because the points are not full-dimensional (too few distinct points,
+/// or all in a hyperplane) or too many for 32-bit indices. Non-finite
+/// coordinates were rejected before.
+template <int D>
+std::optional<std::vector<Simplex<D>>> dewall_simplices(const std::vector<kernel::Point_d<D>>& points,
+                                                        const Options& options) {
+  try {
+    return dewall::triangulate<D>(points, options).simplices;
+  } catch (const Invalid_input&) {
+    return std::nullopt;
+  }
+}
+
+/// Wires the simplices into a triangulation data structure through `tds`, an
+/// access policy providing
+///   Vertex_handle, Cell_handle,
+///   Vertex_handle infinite_vertex(),
+///   Vertex_handle create_vertex(std::size_t input_index),
+///   Cell_handle create_cell(const std::array<Vertex_handle, D + 1>&)   (also sets each vertex's cell),
+///   void set_neighbors(Cell_handle a, int i, Cell_handle b, int j)     (both directions).
+/// Vertices are created in input order for the input points used by some
+/// simplex (the first occurrence of each distinct point, DeWall's convention),
+/// then the finite cells in DeWall's order with DeWall's (positive)
+/// orientation, then one infinite cell per hull facet.
+///
+/// Infinite cells: the finite cell c with its vertex i replaced by the
+/// infinite vertex, then two other vertices swapped. The odd permutation is
+/// what makes the pair (c, infinite cell) consistently oriented, the
+/// combinatorial condition every CGAL TDS checks across a shared facet; it
+/// is also the geometric one, since the infinite vertex then stands where
+/// CGAL expects (the infinite cell is "negatively oriented" with c's
+/// opposite vertex in its place).
+///
+/// \pre the simplices form a triangulation of a full-dimensional point set
+/// (each interior facet in exactly two simplices), as DeWall's output does.
+/// Complexity: expected O(n + number of simplices).
+template <int D, class Access>
+void assemble(const std::vector<Simplex<D>>& simplices, std::size_t input_size, Access& tds) {
+  using Vertex_handle = typename Access::Vertex_handle;
+  using Cell_handle = typename Access::Cell_handle;
+  constexpr std::uint32_t infinite_id = std::numeric_limits<std::uint32_t>::max();
+
+  std::vector<Vertex_handle> vertex(input_size);
+  {
+    std::vector<bool> used(input_size, false);
+    for (const auto& s : simplices)
+      for (std::uint32_t v : s) used[v] = true;
+    for (std::size_t i = 0; i < input_size; ++i)
+      if (used[i]) vertex[i] = tds.create_vertex(i);
+  }
+  const Vertex_handle infinite = tds.infinite_vertex();
+  auto handle_of = [&](std::uint32_t id) { return id == infinite_id ? infinite : vertex[id]; };
+
+  std::vector<Cell_handle> cells;
+  cells.reserve(simplices.size() + simplices.size() / 4);
+  for (const auto& s : simplices) {
+    std::array<Vertex_handle, D + 1> w;
+    for (int i = 0; i <= D; ++i) w[static_cast<std::size_t>(i)] = vertex[s[static_cast<std::size_t>(i)]];
+    cells.push_back(tds.create_cell(w));
+  }
+
+  // Interior facets pair up here; what stays parked is the convex hull.
+  using Matcher = Facet_matcher<D>;
+  typename Matcher::Facet_ref partner{};
+  Matcher interior(std::max<std::size_t>(1024, simplices.size() / 8));
+  for (std::size_t c = 0; c < simplices.size(); ++c)
+    for (int i = 0; i <= D; ++i)
+      if (interior.match_or_park(Matcher::facet_key(simplices[c], i), {c, i}, partner))
+        tds.set_neighbors(cells[c], i, cells[partner.cell], partner.index);
+
+  // One infinite cell per hull facet; their facets through the infinite
+  // vertex (one per hull ridge) pair up among themselves.
+  std::vector<Simplex<D>> infinite_cells;
+  infinite_cells.reserve(interior.size());
+  const std::size_t first_infinite = cells.size();
+  interior.for_each_parked([&](const typename Matcher::Key&, const typename Matcher::Facet_ref& hull) {
+    Simplex<D> s = simplices[hull.cell];
+    const int i = hull.index;
+    s[static_cast<std::size_t>(i)] = infinite_id;
+    std::swap(s[static_cast<std::size_t>((i + 1) % (D + 1))], s[static_cast<std::size_t>((i + 2) % (D + 1))]);
+    std::array<Vertex_handle, D + 1> w;
+    for (int j = 0; j <= D; ++j) w[static_cast<std::size_t>(j)] = handle_of(s[static_cast<std::size_t>(j)]);
+    const Cell_handle inf_cell = tds.create_cell(w);
+    tds.set_neighbors(inf_cell, i, cells[hull.cell], i);
+    cells.push_back(inf_cell);
+    infinite_cells.push_back(s);
+  });
+  Matcher hull_ridges(std::max<std::size_t>(1024, infinite_cells.size()));
+  for (std::size_t c = 0; c < infinite_cells.size(); ++c)
+    for (int i = 0; i <= D; ++i) {
+      if (infinite_cells[c][static_cast<std::size_t>(i)] == infinite_id) continue;
+      if (hull_ridges.match_or_park(Matcher::facet_key(infinite_cells[c], i), {c, i}, partner))
+        tds.set_neighbors(cells[first_infinite + c], i, cells[first_infinite + partner.cell], partner.index);
+    }
+  DEWALL_ASSERT(hull_ridges.size() == 0);
+}
+
+}  // namespace dewall::cgal::detail
