@@ -1,0 +1,138 @@
+// dewall::cgal::make_delaunay_triangulation_2: a genuine
+// CGAL::Delaunay_triangulation_2, computed by DeWall and assembled directly in
+// its triangulation data structure (no point is re-inserted). The 2D twin of
+// delaunay_triangulation_3.hpp (cells are CGAL's faces).
+//
+// The one-line change for a CGAL program:
+//
+//   DT dt(points.begin(), points.end());                                   // before
+//   DT dt = dewall::cgal::make_delaunay_triangulation_2<DT>(points.begin(), points.end());  // after
+//
+// The result is the object CGAL would have built: the same finite cells (as
+// vertex sets; DeWall uses CGAL's symbolic perturbation, so even cospherical
+// points give CGAL's cells), valid (is_valid(true)), and usable with every
+// CGAL operation (locate, nearest_vertex, insert, remove, dual, I/O, meshing).
+#pragma once
+
+#include <CGAL/Delaunay_triangulation_2.h>
+
+#include <array>
+#include <cstddef>
+#include <iterator>
+#include <type_traits>
+#include <vector>
+
+#include "dewall/cgal/detail/assemble.hpp"
+#include "dewall/options.hpp"
+
+namespace dewall::cgal {
+
+namespace detail {
+
+// TDS access for Triangulation_data_structure_2 (see assemble()).
+template <class DT, class Item, class Traits>
+struct Tds2_access {
+  using Tds = typename DT::Triangulation_data_structure;
+  using Vertex_handle = typename Tds::Vertex_handle;
+  using Cell_handle = typename Tds::Face_handle;
+
+  Tds& tds;
+  Vertex_handle infinite;
+  const std::vector<Item>& items;  // by input index
+  Vertex_handle infinite_vertex() const { return infinite; }
+  Vertex_handle create_vertex(std::size_t i) {
+    Vertex_handle v = tds.create_vertex();
+    v->set_point(Traits::point(items[i]));
+    if constexpr (Traits::has_info) v->info() = items[i].second;
+    return v;
+  }
+  Cell_handle create_cell(const std::array<Vertex_handle, 3>& w) {
+    Cell_handle c = tds.create_face(w[0], w[1], w[2]);
+    for (const Vertex_handle& v : w) v->set_face(c);
+    return c;
+  }
+  static void set_neighbors(Cell_handle a, int i, Cell_handle b, int j) {
+    a->set_neighbor(i, b);
+    b->set_neighbor(j, a);
+  }
+};
+
+// Triangulation_hierarchy_2<DT> (CGAL's fast-location variant) names its base level Tr_Base.
+template <class DT>
+inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
+
+/// Builds dt (freshly constructed) from items with DeWall; false when DeWall
+/// does not apply (see make_delaunay_triangulation_2) and dt is untouched.
+template <class DT, class Item>
+bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
+  using Point = typename DT::Point;
+  using Traits = Item_traits<Item, Point>;
+  if constexpr (is_hierarchy_2<DT>) {
+    return false;
+  } else {
+    const auto coords = to_dewall_points<2, std::vector<Item>, Traits>(
+        items, [](const Point& p, int j) { return j == 0 ? p.x() : p.y(); });
+    if (!coords) return false;
+    const auto simplices = dewall_simplices<2>(*coords, options);
+    if (!simplices) return false;
+
+    auto& tds = dt.tds();
+    tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
+    Tds2_access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
+    dt.set_infinite_vertex(access.infinite);
+    tds.set_dimension(2);
+    assemble<2>(*simplices, items.size(), access);
+    return true;
+  }
+}
+
+}  // namespace detail
+
+/// The Delaunay triangulation of the points in [first, last), as a DT.
+///
+/// DT: a CGAL::Delaunay_triangulation_2<K, Tds> for any kernel K and data
+/// structure Tds (vertex and face bases of the caller's choice).
+/// The range holds DT::Point, or std::pair<DT::Point, Info> when the vertex
+/// base carries an Info (as for CGAL's range insert); each vertex gets the info
+/// of its first occurrence in the range.
+///
+/// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
+/// per distinct point (the first occurrence, in input order), DeWall's
+/// triangles (counterclockwise), one infinite face per hull edge, all
+/// neighbour relations (matched through a hash table of edges), dimension 2. The result is exactly the
+/// triangulation CGAL's own insertion would give (the same cells as vertex
+/// sets, also for cospherical points, by the shared symbolic perturbation).
+///
+/// Falls back to CGAL's own insertion (same result, CGAL's speed) when
+///  * the distinct points are fewer than 3 or collinear: CGAL then builds its
+///    lower-dimensional triangulation (dimension -1 … 1), which DeWall does not;
+///  * some coordinate is not exactly a double (e.g. an exact kernel holding
+///    1/3): DeWall decides on doubles, and cells built from rounded
+///    coordinates could be inverted or non-Delaunay for the true points;
+///  * DT is a CGAL::Triangulation_hierarchy_2 (whose upper levels are built
+///    by insertion).
+/// With CGAL::Epick every finite point is exactly doubles: DeWall always runs
+/// on full-dimensional input.
+///
+/// \pre every coordinate is finite.
+/// \throws dewall::Invalid_input for a NaN or infinite coordinate.
+/// Complexity: DeWall's (expected O(n log n) for uniform points) plus O(n +
+/// number of cells) for the assembly.
+template <class DT, class InputIterator>
+DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const Options& options = {},
+                                 const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
+  using Item = typename std::iterator_traits<InputIterator>::value_type;
+  const std::vector<Item> items(first, last);
+  DT dt(traits);
+  if (!detail::build_with_dewall_2(dt, items, options)) dt.insert(items.begin(), items.end());
+  return dt;
+}
+
+/// Convenience overload for a whole range (e.g. a std::vector of points).
+template <class DT, class Range>
+DT make_delaunay_triangulation_2(const Range& range, const Options& options = {},
+                                 const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
+  return make_delaunay_triangulation_2<DT>(std::begin(range), std::end(range), options, traits);
+}
+
+}  // namespace dewall::cgal
