@@ -1,0 +1,377 @@
+// certify: does a list of simplices form a Delaunay triangulation of a point
+// set — and is it *the* canonical one, the symbolically perturbed triangulation
+// that CGAL and dewall build?
+//
+// Independent of the triangulator: it uses the DelaunayKernel's exact
+// predicates (orientation, the perturbed sphere test, the lexicographic order)
+// and the kernel library's exact unperturbed sphere test, nothing from dewall/.
+// Every decision is the sign of an exact determinant; doubles are only ever
+// compared when they are the input coordinates themselves.
+//
+// The checks follow the program-checking approach of K. Mehlhorn, S. Näher,
+// M. Seel, R. Seidel, T. Schilz, S. Schirra, C. Uhrig, "Checking geometric
+// programs or verification of geometric structures", CGTA 12 (1999) 85–103,
+// and O. Devillers, G. Liotta, F. P. Preparata, R. Tamassia, "Checking the
+// convexity of polytopes and the planarity of subdivisions", CGTA 11 (1998)
+// 187–208: local conditions, each cheap, plus one global test that rules out
+// the configurations local tests cannot see (a surface wound twice around).
+//
+// Why these checks suffice. Orient every simplex positively (input rows may
+// come in either orientation). Let C be the chain of these simplices and, for
+// a point x on no facet, deg(x) the number of simplices containing x.
+//  1. Every facet is in at most two simplices, and the two lie on opposite
+//     sides: crossing such an interior facet leaves one simplex and enters
+//     another, so deg is constant off the boundary B (facets in one simplex;
+//     ridges have codimension 2 and do not separate), and ∂C = B, with each
+//     boundary facet oriented away from its simplex.
+//  2. The witness point o (witness_point.hpp) lies strictly inside simplex 0
+//     and in no other simplex: deg(o) = 1. It is strictly on the inner side of
+//     every boundary facet, so a ray from o crosses B only outwards, and the
+//     number of crossings equals the winding number of ∂C around o, deg(o) = 1:
+//     B is star-shaped around o — Mehlhorn et al.'s ray condition.
+//  3. Each boundary ridge lies in exactly two boundary facets, and neither
+//     facet's far vertex lies strictly outside the other's hyperplane: B is a
+//     closed, locally (weakly) convex surface. With 2, it bounds a convex
+//     polytope Q (Mehlhorn et al., Devillers et al.), deg = 1 in Q and 0
+//     outside: the simplices tile Q, face to face (an improper contact would
+//     leave an unmatched facet inside Q or cover some point twice).
+//  4. Every point is a vertex unless it duplicates an earlier point, whose
+//     first occurrence must be the vertex (CGAL's and dewall's convention):
+//     the vertices are the distinct points, so Q = conv(points) and no input
+//     point lies outside B.
+//  5. Every interior facet is locally Delaunay: the far vertex of one simplex
+//     is not strictly inside the circumsphere of the other (unperturbed, exact).
+//     The lifted triangulation is then locally convex at every interior facet,
+//     hence convex (Delaunay's lemma): no point is inside any circumsphere.
+//     With the perturbed predicate the same argument shows the triangulation
+//     is the Delaunay triangulation of the perturbed points, which is unique:
+//     the canonical one. A facet that passes 5 only unperturbed is cospherical
+//     and flipped against the perturbation: Delaunay, not canonical.
+//
+// Cost: O(n log n) to find duplicates, O(m·D) predicates and O(m·(D+1)) face
+// bookkeeping by a counting sort on the smallest vertex (face_grouping.hpp),
+// for n points and m simplices: less than building the triangulation.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <span>
+#include <vector>
+
+#include "dewall/certify/face_grouping.hpp"
+#include "dewall/certify/report.hpp"
+#include "dewall/certify/unperturbed_side_of_sphere.hpp"
+#include "dewall/certify/witness_point.hpp"
+#include "dewall/kernel/concepts.hpp"
+
+namespace dewall::certify {
+
+/// A simplex as D + 1 input indices, in any order.
+template <int D>
+using Simplex_indices = std::array<std::uint32_t, D + 1>;
+
+namespace detail {
+
+template <kernel::DelaunayKernel K>
+class Certifier {
+ public:
+  static constexpr int D = K::dimension;
+  using Point = typename K::Point_d;
+  using Cell = std::array<std::uint32_t, D + 1>;
+  using Cell_points = std::array<const Point*, D + 1>;
+
+  Certifier(const K& k, std::span<const Point> points, std::span<const Cell> rows, const Options& options)
+      : k_(k), points_(points), rows_(rows), options_(options), orientation_(k.orientation_d_object()) {}
+
+  Report run() {
+    report_.dimension = D;
+    report_.points = points_.size();
+    report_.simplices = rows_.size();
+    check_points();
+    if (!stop()) check_simplices();
+    if (!stop()) check_vertices();
+    if (!stop()) check_facets();
+    if (!stop() && !cells_.empty()) check_boundary();
+    if (!stop() && !cells_.empty()) check_covering();
+    // Structural violations first, then the Delaunay ones, then notes.
+    auto& v = report_.violations;
+    v = std::move(fatal_);
+    if (options_.all || v.empty()) v.insert(v.end(), delaunay_.begin(), delaunay_.end());
+    report_.delaunay = v.empty();
+    report_.canonical = report_.delaunay && notes_.empty();
+    v.insert(v.end(), notes_.begin(), notes_.end());
+    return report_;
+  }
+
+ private:
+  bool stop() const { return !options_.all && !fatal_.empty(); }
+  void fail(Violation v) {
+    if (!stop()) fatal_.push_back(std::move(v));
+  }
+
+  Cell_points at(const Cell& c) const {
+    Cell_points p;
+    for (std::size_t i = 0; i <= D; ++i) p[i] = &points_[c[i]];
+    return p;
+  }
+  std::vector<std::uint32_t> facet_of(const Cell& c, int skip) const {
+    std::vector<std::uint32_t> f;
+    for (int i = 0; i <= D; ++i)
+      if (i != skip) f.push_back(c[static_cast<std::size_t>(i)]);
+    std::sort(f.begin(), f.end());
+    return f;
+  }
+  /// orientation of `cell` with its vertex at position i replaced by point q.
+  kernel::Sign replaced(const Cell& cell, int i, std::uint32_t q) const {
+    Cell_points p = at(cell);
+    p[static_cast<std::size_t>(i)] = &points_[q];
+    return orientation_(p);
+  }
+
+  /// Non-finite coordinates (when the kernel's points are doubles), then the
+  /// first occurrence of every point: sort by the exact lexicographic order.
+  void check_points() {
+    const std::size_t n = points_.size();
+    bad_point_.assign(n, false);
+    if constexpr (kernel::approximate_coordinates_are_exact<K>) {
+      const auto coords = k_.approximate_coordinates_object();
+      for (std::size_t i = 0; i < n; ++i) {
+        const auto& x = coords(points_[i]);
+        for (double c : x)
+          if (!std::isfinite(c)) bad_point_[i] = true;
+        if (bad_point_[i]) fail({.rule = Rule::non_finite_point, .point = i});
+      }
+    }
+    std::vector<std::uint32_t> order;
+    order.reserve(n);
+    for (std::size_t i = 0; i < n; ++i)
+      if (!bad_point_[i]) order.push_back(static_cast<std::uint32_t>(i));
+    const auto compare = k_.compare_lexicographically_d_object();
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return compare(points_[a], points_[b]) == kernel::SMALLER;
+    });
+    first_.assign(n, 0);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      // stable: the first of a run of equal points is the earliest input index.
+      const bool same = i > 0 && compare(points_[order[i - 1]], points_[order[i]]) == kernel::EQUAL;
+      first_[order[i]] = same ? first_[order[i - 1]] : order[i];
+      if (!same) ++report_.distinct_points;
+    }
+  }
+
+  /// Indices, repeated vertices, later duplicates, degeneracy; orient positively.
+  void check_simplices() {
+    const std::size_t n = points_.size();
+    used_.assign(n, false);
+    for (std::size_t r = 0; r < rows_.size() && !stop(); ++r) {
+      Cell c = rows_[r];
+      bool ok = true;
+      for (std::uint32_t v : c)
+        if (v >= n) {
+          fail({.rule = Rule::index_out_of_range, .simplex = r, .point = v});
+          ok = false;
+        }
+      if (!ok) continue;
+      for (std::uint32_t v : c) used_[v] = true;
+      Cell sorted = c;
+      std::sort(sorted.begin(), sorted.end());
+      if (const auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end()) {
+        fail({.rule = Rule::repeated_vertex, .simplex = r, .point = *dup});
+        continue;
+      }
+      for (std::uint32_t v : c) {
+        if (bad_point_[v]) ok = false;  // reported with the point
+        else if (first_[v] != v) {
+          fail({.rule = Rule::duplicate_point_used, .simplex = r, .point = v});
+          ok = false;
+        }
+      }
+      if (!ok) continue;
+      const kernel::Sign s = orientation_(at(c));
+      if (s == kernel::ZERO) {
+        fail({.rule = Rule::degenerate_simplex, .simplex = r});
+        continue;
+      }
+      if (s == kernel::NEGATIVE) std::swap(c[0], c[1]);
+      cells_.push_back(c);
+      cell_row_.push_back(r);
+    }
+  }
+
+  void check_vertices() {
+    for (std::size_t i = 0; i < points_.size() && !stop(); ++i)
+      if (!bad_point_[i] && first_[i] == i && !used_[i]) fail({.rule = Rule::point_not_a_vertex, .point = i});
+  }
+
+  /// Facet matching, opposite sides, and the local Delaunay tests.
+  void check_facets() {
+    const auto sphere = k_.side_of_oriented_sphere_d_object();
+    group_faces<D + 1>(points_.size(), std::span<const Cell>(cells_), [&](std::span<const Face_ref> g) {
+      if (stop()) return;
+      const Cell& c1 = cells_[g[0].row];
+      const int i1 = g[0].position;
+      if (g.size() == 1) {
+        boundary_.push_back({g[0].row, i1});
+        return;
+      }
+      if (g.size() > 2) {
+        fail({.rule = Rule::facet_shared_by_many, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row],
+              .face = facet_of(c1, i1)});
+        return;
+      }
+      const Cell& c2 = cells_[g[1].row];
+      const std::uint32_t a = c1[static_cast<std::size_t>(i1)], b = c2[static_cast<std::size_t>(g[1].position)];
+      if (a == b) {
+        fail({.rule = Rule::duplicate_simplex, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row]});
+        return;
+      }
+      // c1 is positive, so a is on the positive side of the facet: b must be on the negative one.
+      if (replaced(c1, i1, b) != kernel::NEGATIVE) {
+        fail({.rule = Rule::facet_same_side, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row],
+              .face = facet_of(c1, i1)});
+        return;
+      }
+      ++report_.interior_facets;
+      if (!options_.all && !delaunay_.empty()) return;  // one witness is enough
+      std::array<const Point*, D + 2> s;
+      const Cell_points p = at(c1);
+      std::copy(p.begin(), p.end(), s.begin());
+      s[D + 1] = &points_[b];
+      const kernel::Oriented_side side = unperturbed_side_of_sphere<K>(k_, s);
+      const auto witness = [&](Rule rule) {
+        return Violation{.rule = rule, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row],
+                         .face = facet_of(c1, i1), .point = b};
+      };
+      if (side == kernel::ON_POSITIVE_SIDE) {
+        delaunay_.push_back(witness(Rule::not_locally_delaunay));
+      } else if (side == kernel::ON_ORIENTED_BOUNDARY) {
+        ++report_.cospherical_facets;
+        if (sphere(s) == kernel::ON_POSITIVE_SIDE && (options_.all || notes_.empty()))
+          notes_.push_back(witness(Rule::not_canonical));
+      }
+    });
+  }
+
+  /// The boundary: a closed surface (every ridge in two boundary facets),
+  /// locally convex at every ridge, facing away from the witness point.
+  void check_boundary() {
+    report_.boundary_facets = boundary_.size();
+    // Boundary facets as rows of D vertices, in their cell's order.
+    std::vector<std::array<std::uint32_t, D>> facets(boundary_.size());
+    for (std::size_t b = 0; b < boundary_.size(); ++b)
+      for (int j = 0, t = 0; j <= D; ++j)
+        if (j != boundary_[b].position)
+          facets[b][static_cast<std::size_t>(t++)] = cells_[boundary_[b].row][static_cast<std::size_t>(j)];
+    const auto cell_position = [&](std::size_t b, int j) { return j < boundary_[b].position ? j : j + 1; };
+    group_faces<D>(points_.size(), std::span<const std::array<std::uint32_t, D>>(facets),
+                   [&](std::span<const Face_ref> g) {
+                     if (stop()) return;
+                     const Face_ref f1 = g[0];
+                     const Cell& c1 = cells_[boundary_[f1.row].row];
+                     if (g.size() != 2) {
+                       std::vector<std::uint32_t> ridge = facet_of(c1, boundary_[f1.row].position);
+                       ridge.erase(std::find(ridge.begin(), ridge.end(), facets[f1.row][static_cast<std::size_t>(f1.position)]));
+                       fail({.rule = Rule::boundary_ridge_not_manifold, .simplex = cell_row_[boundary_[f1.row].row],
+                             .face = ridge});
+                       return;
+                     }
+                     for (int t = 0; t < 2; ++t) {
+                       const Face_ref f = g[static_cast<std::size_t>(t)], o = g[static_cast<std::size_t>(1 - t)];
+                       const Cell& cf = cells_[boundary_[f.row].row];
+                       const std::uint32_t far = facets[o.row][static_cast<std::size_t>(o.position)];
+                       // cf is positive: its inner side is the side of its vertex opposite the facet.
+                       if (replaced(cf, boundary_[f.row].position, far) == kernel::NEGATIVE) {
+                         std::vector<std::uint32_t> ridge = facet_of(cf, boundary_[f.row].position);
+                         ridge.erase(std::find(ridge.begin(), ridge.end(),
+                                               cf[static_cast<std::size_t>(cell_position(f.row, f.position))]));
+                         fail({.rule = Rule::boundary_not_convex, .simplex = cell_row_[boundary_[f.row].row],
+                               .other_simplex = cell_row_[boundary_[o.row].row], .face = ridge, .point = far});
+                         return;
+                       }
+                     }
+                   });
+    const Witness_point<K> o(k_, at(cells_[0]));
+    for (const auto& b : boundary_) {
+      if (stop()) return;
+      if (o.side_of_facet(at(cells_[b.row]), b.position) != kernel::POSITIVE)
+        fail({.rule = Rule::boundary_facet_inward, .simplex = cell_row_[b.row], .other_simplex = cell_row_[0],
+              .face = facet_of(cells_[b.row], b.position)});
+    }
+  }
+
+  /// The global test: no simplex but cells_[0] contains the witness point.
+  void check_covering() {
+    const Witness_point<K> o(k_, at(cells_[0]));
+    for (std::size_t t = 1; t < cells_.size() && !stop(); ++t) {
+      if constexpr (kernel::approximate_coordinates_are_exact<K>) {
+        // o is infinitesimally close to its anchor, an input point: a cell whose
+        // bounding box (exact: the coordinates are the points) misses the anchor
+        // cannot contain o.
+        const auto coords = k_.approximate_coordinates_object();
+        const auto& x = coords(o.anchor());
+        bool outside = false;
+        for (int j = 0; j < D && !outside; ++j) {
+          bool below = true, above = true;
+          for (std::uint32_t v : cells_[t]) {
+            const double c = coords(points_[v])[static_cast<std::size_t>(j)];
+            below = below && x[static_cast<std::size_t>(j)] < c;
+            above = above && x[static_cast<std::size_t>(j)] > c;
+          }
+          outside = below || above;
+        }
+        if (outside) continue;
+      }
+      if (o.inside(at(cells_[t])))
+        fail({.rule = Rule::multiple_covering, .simplex = cell_row_[t], .other_simplex = cell_row_[0],
+              .point = cells_[0][0]});
+    }
+  }
+
+  const K& k_;
+  std::span<const Point> points_;
+  std::span<const Cell> rows_;
+  Options options_;
+  decltype(std::declval<const K&>().orientation_d_object()) orientation_;
+  Report report_;
+  std::vector<Violation> fatal_, delaunay_, notes_;
+  std::vector<bool> bad_point_, used_;
+  std::vector<std::uint32_t> first_;
+  std::vector<Cell> cells_;            // valid simplices, positively oriented
+  std::vector<std::size_t> cell_row_;  // their rows in the input
+  std::vector<Face_ref> boundary_;     // facets of one cell: (cell, opposite position)
+};
+
+}  // namespace detail
+
+/// Decides whether `simplices` (rows of D + 1 input indices, any vertex order,
+/// any row order) is a Delaunay triangulation of `points`, and whether it is
+/// the canonical one (the symbolically perturbed Delaunay triangulation CGAL
+/// and dewall compute). Duplicate points: the first occurrence must be the
+/// vertex, later copies must not appear. See the file comment for the checks
+/// and why they suffice.
+/// \pre K decides the unperturbed sphere sign (unperturbed_side_of_sphere.hpp);
+/// Filtered_kernel_d<D> does.
+/// Complexity: O(n log n + m·D²) predicates and bookkeeping, n points, m simplices.
+template <kernel::DelaunayKernel K>
+  requires detail::has_unperturbed_sphere<K>
+Report certify(std::span<const typename K::Point_d> points,
+               std::span<const Simplex_indices<K::dimension>> simplices, const Options& options = {},
+               const K& k = {}) {
+  return detail::Certifier<K>(k, points, simplices, options).run();
+}
+
+/// Convenience form for vectors.
+template <kernel::DelaunayKernel K>
+  requires detail::has_unperturbed_sphere<K>
+Report certify(const std::vector<typename K::Point_d>& points,
+               const std::vector<Simplex_indices<K::dimension>>& simplices, const Options& options = {},
+               const K& k = {}) {
+  return certify<K>(std::span<const typename K::Point_d>(points),
+                    std::span<const Simplex_indices<K::dimension>>(simplices), options, k);
+}
+
+}  // namespace dewall::certify

@@ -1,0 +1,81 @@
+// Grouping the (k−1)-faces of k-vertex rows: which rows share which facet.
+//
+// The certifier matches the facets of the simplices (k = D + 1) and the ridges
+// of the boundary facets (k = D). Instead of one global sort or a hash map of
+// facet keys, every face is filed under its smallest vertex (a counting sort,
+// linear in the number of faces), then each vertex's bucket — a few dozen faces
+// in practice — is sorted by the full key. Exact (keys are compared, never only
+// hashed), O(F + n) plus the small sorts, and cache friendly. Topology only:
+// nothing here knows the kernel.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+namespace dewall::certify::detail {
+
+/// A face of row `row`: the row without its vertex at position `position`.
+struct Face_ref {
+  std::size_t row;
+  int position;
+};
+
+/// Calls `group(std::span<const Face_ref>)` once for every distinct (K−1)-face
+/// of the rows, with every row/position that has it (in increasing row order
+/// within a group). Groups come bucket by bucket (by smallest vertex).
+/// \pre every index < vertex_count; the K indices of a row are distinct.
+/// Complexity: O(rows·K + vertex_count) plus sorting each bucket (O(b log b) each).
+template <std::size_t K, class Group>
+void group_faces(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows, Group&& group) {
+  static_assert(K >= 2);
+  using Key = std::array<std::uint32_t, K - 1>;
+  const auto key_of = [&](std::size_t row, int position) {
+    Key key;
+    for (int j = 0, k = 0; j < static_cast<int>(K); ++j)
+      if (j != position) key[static_cast<std::size_t>(k++)] = rows[row][static_cast<std::size_t>(j)];
+    std::sort(key.begin(), key.end());
+    return key;
+  };
+  const auto smallest = [&](std::size_t row, int position) {
+    std::uint32_t m = UINT32_MAX;
+    for (int j = 0; j < static_cast<int>(K); ++j)
+      if (j != position) m = std::min(m, rows[row][static_cast<std::size_t>(j)]);
+    return m;
+  };
+  // Counting sort of the face references by smallest vertex.
+  std::vector<std::size_t> start(vertex_count + 1, 0);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    for (int p = 0; p < static_cast<int>(K); ++p) ++start[smallest(r, p) + 1];
+  for (std::size_t v = 0; v < vertex_count; ++v) start[v + 1] += start[v];
+  // Packed as row·K + position: one 64-bit word per face.
+  std::vector<std::uint64_t> refs(start[vertex_count]);
+  {
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int p = 0; p < static_cast<int>(K); ++p)
+        refs[next[smallest(r, p)]++] = static_cast<std::uint64_t>(r) * K + static_cast<std::uint64_t>(p);
+  }
+  std::vector<std::pair<Key, std::uint64_t>> bucket;
+  std::vector<Face_ref> members;
+  for (std::size_t v = 0; v < vertex_count; ++v) {
+    bucket.clear();
+    for (std::size_t i = start[v]; i < start[v + 1]; ++i)
+      bucket.emplace_back(key_of(static_cast<std::size_t>(refs[i] / K), static_cast<int>(refs[i] % K)), refs[i]);
+    std::sort(bucket.begin(), bucket.end());
+    for (std::size_t i = 0; i < bucket.size();) {
+      std::size_t j = i;
+      members.clear();
+      for (; j < bucket.size() && bucket[j].first == bucket[i].first; ++j)
+        members.push_back({static_cast<std::size_t>(bucket[j].second / K), static_cast<int>(bucket[j].second % K)});
+      group(std::span<const Face_ref>(members));
+      i = j;
+    }
+  }
+}
+
+}  // namespace dewall::certify::detail

@@ -1,0 +1,47 @@
+// Reading simplex lists: the plain list, TetGen .ele and Qhull's `qdelaunay i`.
+//
+// Plain list: one simplex per line, its D + 1 zero-based point indices
+// separated by whitespace, any vertex order, any line order; `#` starts a
+// comment, blank lines are skipped. Qhull (`qdelaunay i`, `qdelaunay Qt i`):
+// a first line with the number of facets alone, then one facet per line as
+// zero-based indices; recognised by that lone count. A facet with more than
+// D + 1 vertices is a non-simplicial Delaunay region: Qhull writes those
+// without `Qt`, and they are rejected (run qdelaunay with Qt). TetGen .ele
+// (chosen by the extension): "<count> <vertices per simplex> <#attributes>",
+// then "<index> <v_0> … <v_D> [attributes]", numbered like the .node file.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "dewall/io/point_reader.hpp"
+#include "dewall/io/simplex_writer.hpp"
+
+namespace dewall::io {
+
+/// A simplex list as read: the rows (zero-based indices) and the line of the
+/// file each row came from, for messages.
+struct Simplex_list {
+  Simplex_table table;
+  std::vector<std::size_t> lines;  // lines[r]: the 1-based line of row r
+  std::string format;              // "plain", "qhull" or "tetgen"
+};
+
+/// Reads the plain list or Qhull's output (recognised by its lone count line)
+/// of simplices of `dimension` (D + 1 indices per row).
+/// \throws Parse_error (naming file and line) on a token that is not a
+/// non-negative integer below 2^32, a row of the wrong length, or a Qhull count
+/// that does not match the rows.
+Simplex_list read_simplices(std::istream& in, const std::string& name, int dimension);
+
+/// Reads TetGen .ele; vertex numbers are shifted down by `first_index` (the
+/// first point number of the matching .node file: 0 or 1).
+/// \throws Parse_error as read_simplices, and on a vertex number below first_index.
+Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, std::size_t first_index);
+
+/// Reads a file by path ("-" = standard input); ".ele" selects TetGen's format.
+Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index);
+
+}  // namespace dewall::io

@@ -1,0 +1,146 @@
+#include "dewall/io/simplex_reader.hpp"
+
+#include <cctype>
+#include <cstdint>
+#include <fstream>
+#include <iostream>
+#include <string_view>
+
+namespace dewall::io {
+namespace {
+
+std::string where(const std::string& name, std::size_t line) { return name + ":" + std::to_string(line) + ": "; }
+
+/// The non-negative integers of one line (comment removed). Indices must fit in
+/// 32 bits, the width simplices are stored in; anything else is a Parse_error.
+std::vector<std::uint64_t> parse_indices(std::string_view line, const std::string& name, std::size_t line_no) {
+  if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+  std::vector<std::uint64_t> values;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i == line.size()) break;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    const std::string_view token = line.substr(i, j - i);
+    std::uint64_t v = 0;
+    for (char c : token) {
+      if (!std::isdigit(static_cast<unsigned char>(c)))
+        throw Parse_error(where(name, line_no) + "'" + std::string(token) + "' is not a vertex index (a non-negative integer)");
+      v = v * 10 + static_cast<std::uint64_t>(c - '0');
+      if (v > UINT32_MAX) throw Parse_error(where(name, line_no) + "'" + std::string(token) + "' is too large for a vertex index");
+    }
+    values.push_back(v);
+    i = j;
+  }
+  return values;
+}
+
+void check_dimension(int dimension, const std::string& name) {
+  if (dimension < 2 || dimension > 6)
+    throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+}
+
+void add_row(Simplex_list& list, const std::vector<std::uint64_t>& v, std::size_t from, std::size_t shift,
+             const std::string& name, std::size_t line_no) {
+  const auto k = static_cast<std::size_t>(list.table.vertices_per_simplex);
+  for (std::size_t i = from; i < from + k; ++i) {
+    if (v[i] < shift)
+      throw Parse_error(where(name, line_no) + "vertex number " + std::to_string(v[i]) + " is below the first point number " +
+                        std::to_string(shift));
+    list.table.indices.push_back(static_cast<std::uint32_t>(v[i] - shift));
+  }
+  list.lines.push_back(line_no);
+}
+
+}  // namespace
+
+Simplex_list read_simplices(std::istream& in, const std::string& name, int dimension) {
+  check_dimension(dimension, name);
+  Simplex_list list;
+  list.format = "plain";
+  list.table.vertices_per_simplex = dimension + 1;
+  const auto k = static_cast<std::size_t>(dimension + 1);
+  std::string line;
+  std::size_t line_no = 0, expected = 0;
+  bool first = true;
+  while (std::getline(in, line)) {
+    const auto v = parse_indices(line, name, ++line_no);
+    if (v.empty()) continue;
+    if (first && v.size() == 1) {  // a lone count: Qhull's header (a plain row has D + 1 ≥ 3 values)
+      list.format = "qhull";
+      expected = static_cast<std::size_t>(v[0]);
+      first = false;
+      continue;
+    }
+    first = false;
+    if (v.size() != k) {
+      if (list.format == "qhull" && v.size() > k)
+        throw Parse_error(where(name, line_no) + "a non-simplicial facet with " + std::to_string(v.size()) +
+                          " vertices (cospherical points; run qdelaunay with the Qt option)");
+      throw Parse_error(where(name, line_no) + "expected " + std::to_string(k) + " vertex indices, found " +
+                        std::to_string(v.size()));
+    }
+    add_row(list, v, 0, 0, name, line_no);
+  }
+  if (in.bad()) throw Parse_error(name + ": read error");
+  if (list.format == "qhull" && list.table.size() != expected)
+    throw Parse_error(name + ": the Qhull header announces " + std::to_string(expected) + " facets, the file has " +
+                      std::to_string(list.table.size()) + " (truncated?)");
+  return list;
+}
+
+Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, std::size_t first_index) {
+  check_dimension(dimension, name);
+  Simplex_list list;
+  list.format = "tetgen";
+  list.table.vertices_per_simplex = dimension + 1;
+  const auto k = static_cast<std::size_t>(dimension + 1);
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<std::uint64_t> header;
+  while (header.empty() && std::getline(in, line)) header = parse_indices(line, name, ++line_no);
+  if (header.size() < 2)
+    throw Parse_error(where(name, line_no) + "expected an .ele header '<count> <vertices per simplex> <#attributes>'");
+  if (header[1] != k)
+    throw Parse_error(where(name, line_no) + "the header says " + std::to_string(header[1]) +
+                      " vertices per simplex; the points need " + std::to_string(k));
+  const std::size_t count = static_cast<std::size_t>(header[0]);
+  const std::size_t width = 1 + k + (header.size() > 2 ? static_cast<std::size_t>(header[2]) : 0);
+  while (list.table.size() < count && std::getline(in, line)) {
+    // Attributes may be real numbers: parse only the index and the vertices strictly.
+    std::string_view content(line);
+    if (const auto hash = content.find('#'); hash != std::string_view::npos) content = content.substr(0, hash);
+    std::string prefix;
+    std::size_t tokens = 0, i = 0;
+    while (i < content.size()) {
+      while (i < content.size() && std::isspace(static_cast<unsigned char>(content[i]))) ++i;
+      if (i == content.size()) break;
+      std::size_t j = i;
+      while (j < content.size() && !std::isspace(static_cast<unsigned char>(content[j]))) ++j;
+      if (tokens < 1 + k) prefix += std::string(content.substr(i, j - i)) + " ";
+      ++tokens;
+      i = j;
+    }
+    ++line_no;
+    if (tokens == 0) continue;
+    if (tokens != width)
+      throw Parse_error(where(name, line_no) + "expected " + std::to_string(width) + " values, found " + std::to_string(tokens));
+    const auto v = parse_indices(prefix, name, line_no);
+    add_row(list, v, 1, first_index, name, line_no);
+  }
+  if (list.table.size() != count)
+    throw Parse_error(name + ": the header announces " + std::to_string(count) + " simplices, the file has " +
+                      std::to_string(list.table.size()) + " (truncated?)");
+  return list;
+}
+
+Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
+  if (path == "-") return read_simplices(std::cin, "<stdin>", dimension);
+  const bool ele = path.size() > 4 && path.compare(path.size() - 4, 4, ".ele") == 0;
+  std::ifstream in(path);
+  if (!in) throw Parse_error(path + ": cannot open file");
+  return ele ? read_ele(in, path, dimension, first_index) : read_simplices(in, path, dimension);
+}
+
+}  // namespace dewall::io
