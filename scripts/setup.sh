@@ -2,7 +2,8 @@
 # Installs the Debian packages the project needs, only those that are missing.
 set -euo pipefail
 packages=(cmake g++ make ccache libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-          catch2 libtbb-dev libbenchmark-dev qhull-bin libeigen3-dev)
+          catch2 libtbb-dev libbenchmark-dev qhull-bin libeigen3-dev
+          clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,191 @@
+// fuzz_triangulate: dewall::triangulate on small, mostly degenerate point sets
+// (D = 2, 3, 4) against CGAL's Delaunay triangulation and a brute-force
+// empty-sphere check.
+//
+// Input: [dimension] [point count] [family] [family parameters] [coordinate
+// style header] [transform], then per point one byte (one in eight: a copy of an
+// earlier point) and the point's bytes. Families, all chosen to be degenerate
+// in exact arithmetic, because that is where the perturbation must agree with
+// CGAL's to the last simplex:
+//   lattice      integer grid {0 … m−1}^D (cocircular/cospherical everywhere);
+//   cospherical  signed permutations of one small integer vector (all points on
+//                one sphere around the origin);
+//   layers       the last coordinate from {0, 1, 2} (coplanar layers), the
+//                others from the coordinate styles of fuzz_common.hpp;
+//   free         every coordinate from the coordinate styles (extreme, subnormal,
+//                nudged, raw doubles).
+// The transform translates by an integer and scales by 2^e, e ∈ [-1074, 1000]
+// (exact on lattices unless the result is subnormal; overflow to infinity is
+// legal input that must be rejected as Invalid_input).
+//
+// Properties:
+//  1. non-finite input → Invalid_input; otherwise Invalid_input exactly when
+//     CGAL finds no finite full cell (fewer than D + 1 distinct points, or the
+//     points do not span E^D);
+//  2. the simplices, as sorted index tuples, are the finite cells of CGAL's
+//     triangulation; no simplex repeats; every simplex is positively oriented
+//     and uses first occurrences of duplicate points only;
+//  3. empty spheres, by brute force: no distinct input point lies inside any
+//     simplex's circumsphere under the kernel's perturbed predicate;
+//  4. the output is a function of the point set and not of the threads: the
+//     serial run (parallel_depth = 0) gives the same list in the same order, and
+//     the reversed input gives the same simplices (mapped through coordinates).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "dewall/dewall.hpp"
+#include "dewall/kernel/orientation.hpp"
+#include "dewall/kernel/side_of_sphere.hpp"
+#include "fuzz_common.hpp"
+#include "support/cgal_reference.hpp"
+
+namespace {
+
+using namespace dewall::kernel;
+using dewall::fuzz::Byte_source;
+using dewall::fuzz::Coordinate_decoder;
+
+enum class Family : int { lattice, cospherical, layers, free };
+constexpr int family_count = 4;
+
+// Small enough that one execution stays in the milliseconds under ASan.
+constexpr int max_points(int d) { return d == 2 ? 64 : d == 3 ? 40 : 20; }
+
+template <int D>
+std::vector<Point_d<D>> read_points(Byte_source& in) {
+  const int n = in.integer(1, max_points(D));
+  const auto family = static_cast<Family>(in.integer(0, family_count - 1));
+  const int lattice_size = in.integer(2, 6);
+  std::array<int, D> sphere_vector;
+  for (auto& v : sphere_vector) v = in.integer(0, 4);
+  const Coordinate_decoder decoder = Coordinate_decoder::read(in);
+  // Most inputs keep their natural scale; one in four moves to an extreme one.
+  const std::uint8_t transform = in.byte();
+  const int exponent = transform % 4 == 0 ? in.integer(-1074, 1000) : 0;
+  const double offset = transform % 8 == 4 ? in.integer(-(1 << 15), 1 << 15) * 1024.0 : 0;
+
+  std::vector<Point_d<D>> points;
+  for (int i = 0; i < n; ++i) {
+    const std::uint8_t b = in.byte();
+    if (!points.empty() && b % 8 == 7) {
+      points.push_back(points[b / 8 % points.size()]);
+      continue;
+    }
+    Point_d<D> p;
+    switch (family) {
+      case Family::lattice:
+        for (int j = 0; j < D; ++j) p[j] = in.integer(0, lattice_size - 1);
+        break;
+      case Family::cospherical: {
+        // A signed permutation of sphere_vector: |p| is the same for every point.
+        std::array<int, D> v = sphere_vector;
+        for (int j = 0; j < D - 1; ++j) std::swap(v[j], v[in.integer(j, D - 1)]);
+        const std::uint8_t signs = in.byte();
+        for (int j = 0; j < D; ++j) p[j] = (signs >> j & 1) ? -v[j] : v[j];
+        break;
+      }
+      case Family::layers:
+        for (int j = 0; j < D - 1; ++j) p[j] = decoder.coordinate(in);
+        p[D - 1] = in.integer(0, 2);
+        break;
+      case Family::free:
+        p = dewall::fuzz::read_point<D>(in, decoder);
+        break;
+    }
+    points.push_back(p);
+  }
+  for (auto& p : points)
+    for (int j = 0; j < D; ++j) p[j] = std::ldexp(p[j] + offset, exponent);
+  return points;
+}
+
+template <int D>
+struct Checker {
+  const std::vector<Point_d<D>>& points;
+
+  void check(bool ok, const char* what) const {
+    if (ok) return;
+    dewall::fuzz::print_points<D>("input", points);
+    dewall::fuzz::fail(what);
+  }
+};
+#define CHECK_ON(checker, expr) (checker).check((expr), #expr)
+
+template <int D>
+void run(Byte_source& in) {
+  const std::vector<Point_d<D>> points = read_points<D>(in);
+  const Checker<D> checker{points};
+  bool finite = true;
+  for (const auto& p : points) finite = finite && is_finite(p);
+
+  dewall::Triangulation<D> t;
+  bool rejected = false;
+  try {
+    t = dewall::triangulate<D>(points);
+  } catch (const dewall::Invalid_input&) {
+    rejected = true;
+  }
+  if (!finite) {
+    CHECK_ON(checker, rejected);
+    return;
+  }
+  // Property 1 and 2: CGAL decides what the answer is.
+  const auto expected = dewall::test::cgal_delaunay<D>(points);
+  CHECK_ON(checker, rejected == expected.empty());
+  if (rejected) return;
+  const auto got = dewall::test::as_set<D>(t.simplices);
+  CHECK_ON(checker, got.size() == t.simplices.size());
+  CHECK_ON(checker, got == expected);
+
+  std::map<std::array<double, D>, std::uint32_t> first;
+  for (std::size_t i = points.size(); i-- > 0;) first[points[i].x] = static_cast<std::uint32_t>(i);
+  for (const auto& s : t.simplices) {
+    Orientation_points<D> o;
+    for (int i = 0; i <= D; ++i) {
+      CHECK_ON(checker, s[i] < points.size() && first.at(points[s[i]].x) == s[i]);
+      o[static_cast<std::size_t>(i)] = &points[s[i]];
+    }
+    CHECK_ON(checker, orientation_d<D>(o) == POSITIVE);
+  }
+
+  // Property 3: empty spheres, every simplex against every distinct point.
+  for (const auto& s : t.simplices) {
+    Sphere_points<D> refs;
+    for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &points[s[i]];
+    for (const auto& [coords, index] : first) {
+      if (std::find(s.begin(), s.end(), index) != s.end()) continue;
+      refs[D + 1] = &points[index];
+      CHECK_ON(checker, side_of_oriented_sphere_d_sos<D>(refs) == ON_NEGATIVE_SIDE);
+    }
+  }
+
+  // Property 4: threads and input order change nothing.
+  const auto serial = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = 0});
+  CHECK_ON(checker, serial.simplices == t.simplices);
+  const std::vector<Point_d<D>> reversed(points.rbegin(), points.rend());
+  std::vector<dewall::Simplex<D>> mapped;
+  for (auto s : dewall::triangulate<D>(reversed).simplices) {
+    for (auto& v : s) v = first.at(reversed[v].x);
+    mapped.push_back(s);
+  }
+  CHECK_ON(checker, dewall::test::as_set<D>(mapped) == expected);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  Byte_source in(data, size);
+  // Mostly 2D and 3D (CGAL's specialised triangulations); 4D through CGAL's dD one.
+  const std::uint8_t d = in.byte();
+  const int dimension = d % 8 < 4 ? 2 : d % 8 < 7 ? 3 : 4;
+  if (dimension == 2) run<2>(in);
+  else if (dimension == 3) run<3>(in);
+  else run<4>(in);
+  return 0;
+}
