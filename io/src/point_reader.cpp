@@ -1,5 +1,6 @@
 #include "dewall/io/point_reader.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -110,9 +111,14 @@ Point_table read_node(std::istream& in, const std::string& name) {
   std::size_t line_no = 0;
   std::vector<double> header;
   while (header.empty() && std::getline(in, line)) header = parse_numbers(line, name, ++line_no);
-  if (header.size() < 2 || !is_count(header[0]) || !is_count(header[1]))
+  // Every header value is checked to be a count before it is converted: a
+  // double outside the target type's range has no defined conversion (fuzz_parse).
+  if (header.size() < 2 || !std::all_of(header.begin(), header.begin() + std::min<std::size_t>(header.size(), 4), is_count))
     throw Parse_error(where(name, line_no) + "expected a .node header '<count> <dimension> <#attributes> <markers>'");
   const auto count = static_cast<std::size_t>(header[0]);
+  if (header[1] > 6)
+    throw Parse_error(where(name, line_no) + "dimension " + std::to_string(static_cast<long long>(header[1])) +
+                      " is not supported (2 to 6)");
   t.dimension = static_cast<int>(header[1]);
   check_dimension(t.dimension, name, line_no);
   const std::size_t attributes = header.size() > 2 ? static_cast<std::size_t>(header[2]) : 0;
