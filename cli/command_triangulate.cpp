@@ -1,28 +1,38 @@
-// dewall triangulate INPUT [-o OUTPUT] [--stats]
+// dewall triangulate INPUT [-o OUTPUT] [--stats] [--quiet]
 #include <cstdio>
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
+#include "dewall/io/progress.hpp"
 
 namespace dewall::cli {
 
 int command_triangulate(int argc, char** argv) {
   std::string input, output = "-";
-  bool stats = false;
+  bool stats = false, quiet = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
     else if (a == "--stats") stats = true;
+    else if (a == "--quiet" || a == "-q") quiet = true;
     else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
     else if (input.empty()) input = a;
     else throw Usage_error("unexpected argument '" + a + "'");
   }
   if (input.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
-  const auto table = io::read_points_file(input);
+  io::Progress progress(!quiet && io::stderr_is_terminal());
+  const auto table = io::read_points_file(input, &progress);
+  // Refuse an impossible output before the (possibly long) triangulation.
+  if (io::is_vtk_path(output) && table.dimension > 3)
+    throw Usage_error(output + ": VTK output supports 2D and 3D only; " + input + " holds points of dimension " +
+                      std::to_string(table.dimension) + " (write a plain simplex list instead)");
   Run run;
   try {
+    progress.phase("triangulating " + std::to_string(table.size()) + " points");
     run = triangulate_any(table);
+    progress.finish();
   } catch (const Invalid_input& e) {
+    progress.finish();
     const auto index = e.point_index();
     if (index != Invalid_input::npos)
       std::fprintf(stderr, "dewall: %s: point %zu: %s\n", input.c_str(), index + table.first_index, e.what());
@@ -30,7 +40,8 @@ int command_triangulate(int argc, char** argv) {
       std::fprintf(stderr, "dewall: %s: %s\n", input.c_str(), e.what());
     return 1;
   }
-  io::write_simplices_file(output, run.simplices, table.first_index);
+  io::write_triangulation_file(output, table, run.simplices, &progress);
+  progress.finish();
   if (stats) print_stats(stderr, run);
   return 0;
 }
@@ -38,12 +49,17 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--stats]\n"
+    "  triangulate INPUT [-o OUTPUT] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
-    "      plain text (one point per line, '#' comments), rbox output, or TetGen .node.\n"
+    "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
+    "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
+    "      and VTK formats are recognised by their first bytes).\n"
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
-    "      (default: standard output); TetGen .ele when OUTPUT ends in .ele.\n"
-    "      --stats prints the paper's Table 1 counters and build_s=SECONDS on stderr.\n"});
+    "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, legacy\n"
+    "      VTK for ParaView when it ends in .vtk (2D and 3D).\n"
+    "      --stats prints the paper's Table 1 counters and build_s=SECONDS on stderr.\n"
+    "      A progress line is shown on stderr for long work when it is a terminal;\n"
+    "      --quiet turns it off.\n"});
 }  // namespace
 
 }  // namespace dewall::cli

@@ -3,10 +3,15 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
+
+#include "dewall/io/binary_points.hpp"
+#include "dewall/io/progress.hpp"
+#include "dewall/io/vtk.hpp"
 
 namespace dewall::io {
 namespace {
@@ -59,14 +64,17 @@ static long rbox_leading_integer(const std::string& line) {
   return end == token.c_str() + token.size() && v >= 0 ? v : -1;
 }
 
-Point_table read_points(std::istream& in, const std::string& name) {
+Point_table read_points(std::istream& in, const std::string& name, Progress* progress) {
   Point_table t;
   std::vector<std::pair<std::size_t, std::string>> lines;
   {
     std::string line;
     std::size_t line_no = 0;
+    std::uint64_t bytes = 0;
     while (std::getline(in, line)) {
       ++line_no;
+      bytes += line.size() + 1;
+      if (progress && (line_no & 0xffff) == 0) progress->advance_to(bytes);
       const auto content = line.substr(0, line.find('#'));
       if (content.find_first_not_of(" \t\r\v\f") != std::string::npos) lines.emplace_back(line_no, line);
     }
@@ -105,10 +113,11 @@ Point_table read_points(std::istream& in, const std::string& name) {
   return t;
 }
 
-Point_table read_node(std::istream& in, const std::string& name) {
+Point_table read_node(std::istream& in, const std::string& name, Progress* progress) {
   Point_table t;
   std::string line;
   std::size_t line_no = 0;
+  std::uint64_t bytes = 0;
   std::vector<double> header;
   while (header.empty() && std::getline(in, line)) header = parse_numbers(line, name, ++line_no);
   // Every header value is checked to be a count before it is converted: a
@@ -126,6 +135,8 @@ Point_table read_node(std::istream& in, const std::string& name) {
   const std::size_t width = 1 + static_cast<std::size_t>(t.dimension) + attributes + markers;
   std::size_t read = 0;
   while (read < count && std::getline(in, line)) {
+    bytes += line.size() + 1;
+    if (progress && (line_no & 0xffff) == 0) progress->advance_to(bytes);
     const auto values = parse_numbers(line, name, ++line_no);
     if (values.empty()) continue;
     if (values.size() != width)
@@ -148,12 +159,52 @@ Point_table read_node(std::istream& in, const std::string& name) {
   return t;
 }
 
-Point_table read_points_file(const std::string& path) {
+Point_table read_points_file(const std::string& path, Progress* progress) {
   const bool node = path.size() > 5 && path.compare(path.size() - 5, 5, ".node") == 0;
-  if (path == "-") return read_points(std::cin, "<stdin>");
-  std::ifstream in(path);
+  if (path == "-") {
+    const std::string name = "<stdin>";
+    if (progress) progress->phase("reading " + name);
+    Point_table t;
+    // A pipe cannot be rewound: the binary format is recognised by its first
+    // byte ('D' never starts a text point file that parses), and a possible VTK
+    // file (first byte '#') is read into memory so its first line can be examined.
+    const int first = std::cin.peek();
+    if (first == binary_points_magic[0]) {
+      t = read_binary_points(std::cin, name, progress);
+    } else if (first == '#') {
+      std::ostringstream all;
+      all << std::cin.rdbuf();
+      std::istringstream in(all.str());
+      std::string first_line;
+      std::getline(in, first_line);
+      in.seekg(0);
+      t = is_vtk_header(first_line) ? read_vtk_points(in, name) : read_points(in, name, progress);
+    } else {
+      t = read_points(std::cin, name, progress);
+    }
+    if (progress) progress->finish();
+    return t;
+  }
+  std::ifstream in(path, std::ios::binary);
   if (!in) throw Parse_error(path + ": cannot open file");
-  return node ? read_node(in, path) : read_points(in, path);
+  char magic[4] = {};
+  in.read(magic, 4);
+  const bool binary = in.gcount() == 4 && std::equal(magic, magic + 4, binary_points_magic);
+  in.clear();
+  in.seekg(0);
+  if (binary) return read_binary_points(in, path, progress);
+  std::string first_line;
+  std::getline(in, first_line);
+  in.clear();
+  in.seekg(0, std::ios::end);
+  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
+  in.seekg(0);
+  Point_table t;
+  if (progress) progress->phase("reading " + path, size);
+  if (is_vtk_header(first_line)) t = read_vtk_points(in, path);
+  else t = node ? read_node(in, path, progress) : read_points(in, path, progress);
+  if (progress) progress->finish();
+  return t;
 }
 
 }  // namespace dewall::io

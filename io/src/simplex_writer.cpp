@@ -1,5 +1,8 @@
 #include "dewall/io/simplex_writer.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -7,9 +10,22 @@
 #include <stdexcept>
 #include <unistd.h>
 
-namespace dewall::io {
+#include "dewall/io/binary_points.hpp"
+#include "dewall/io/progress.hpp"
+#include "dewall/io/vtk.hpp"
 
-void write_plain(std::ostream& out, const Simplex_table& t) {
+namespace dewall::io {
+namespace {
+
+bool has_extension(const std::string& path, const std::string& ext) {
+  if (path.size() <= ext.size()) return false;
+  return std::equal(ext.begin(), ext.end(), path.end() - static_cast<std::ptrdiff_t>(ext.size()),
+                    [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
+}
+
+}  // namespace
+
+void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress) {
   const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
   std::string line;
   for (std::size_t s = 0; s < t.size(); ++s) {
@@ -20,6 +36,7 @@ void write_plain(std::ostream& out, const Simplex_table& t) {
     }
     line += '\n';
     out << line;
+    if (progress && (s & 0xffff) == 0) progress->advance_to(s);
   }
 }
 
@@ -33,20 +50,25 @@ void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_inde
   }
 }
 
-void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index) {
-  const bool ele = path.size() > 4 && path.compare(path.size() - 4, 4, ".ele") == 0;
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
   if (path == "-") {
     std::ios::sync_with_stdio(false);
-    ele ? write_ele(std::cout, t, first_index) : write_plain(std::cout, t);
+    write(std::cout);
     std::cout.flush();
     if (!std::cout) throw std::runtime_error("<stdout>: write error");
     return;
   }
   const std::string temporary = path + ".tmp." + std::to_string(::getpid());
   {
-    std::ofstream out(temporary);
+    std::ofstream out(temporary, std::ios::binary);
     if (!out) throw std::runtime_error(path + ": cannot create file");
-    ele ? write_ele(out, t, first_index) : write_plain(out, t);
+    try {
+      write(out);
+    } catch (...) {
+      out.close();
+      std::remove(temporary.c_str());
+      throw;
+    }
     out.flush();
     if (!out) {
       out.close();
@@ -60,6 +82,65 @@ void write_simplices_file(const std::string& path, const Simplex_table& t, std::
     std::remove(temporary.c_str());
     throw std::runtime_error(path + ": " + ec.message());
   }
+}
+
+void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
+                          Progress* progress) {
+  const bool ele = has_extension(path, ".ele");
+  if (progress) progress->phase("writing " + (path == "-" ? std::string("<stdout>") : path), ele ? 0 : t.size());
+  write_file_atomically(path, [&](std::ostream& out) {
+    ele ? write_ele(out, t, first_index) : write_plain(out, t, progress);
+  });
+  if (progress) progress->finish();
+}
+
+bool is_vtk_path(const std::string& path) { return has_extension(path, ".vtk"); }
+
+void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
+                              Progress* progress) {
+  if (!is_vtk_path(path)) return write_simplices_file(path, t, points.first_index, progress);
+  if (points.dimension != 2 && points.dimension != 3)  // refuse before creating anything
+    throw Vtk_unsupported(path + ": VTK output supports 2D and 3D only; these points are in dimension " +
+                          std::to_string(points.dimension) + " (write a plain simplex list instead)");
+  write_file_atomically(path, [&](std::ostream& out) { write_vtk_triangulation(out, points, t, progress); });
+}
+
+void write_points_text(std::ostream& out, const Point_table& t, Progress* progress) {
+  const auto d = static_cast<std::size_t>(t.dimension);
+  std::string buffer;
+  char number[32];
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    for (std::size_t j = 0; j < d; ++j) {
+      if (j) buffer += ' ';
+      // Shortest representation that reads back to the same double.
+      const auto r = std::to_chars(number, number + sizeof number, t.coordinates[i * d + j]);
+      buffer.append(number, r.ptr);
+    }
+    buffer += '\n';
+    if (buffer.size() > (1u << 16)) {
+      out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+      buffer.clear();
+      if (progress) progress->advance_to(i);
+    }
+  }
+  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+}
+
+void write_points_file(const std::string& path, const Point_table& t, Progress* progress) {
+  const std::string shown = path == "-" ? std::string("<stdout>") : path;
+  if (has_extension(path, ".dwpt")) {
+    if (progress) progress->phase("writing " + shown, binary_points_file_size(t.size(), t.dimension));
+    write_file_atomically(path, [&](std::ostream& out) { write_binary_points(out, t, progress); });
+  } else if (is_vtk_path(path)) {
+    if (t.dimension != 2 && t.dimension != 3)
+      throw Vtk_unsupported(path + ": VTK output supports 2D and 3D only; these points are in dimension " +
+                            std::to_string(t.dimension));
+    write_file_atomically(path, [&](std::ostream& out) { write_vtk_points(out, t, progress); });
+  } else {
+    if (progress) progress->phase("writing " + shown, t.size());
+    write_file_atomically(path, [&](std::ostream& out) { write_points_text(out, t, progress); });
+  }
+  if (progress) progress->finish();
 }
 
 }  // namespace dewall::io

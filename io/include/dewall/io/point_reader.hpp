@@ -1,4 +1,5 @@
-// Reading point sets: plain text, Qhull's rbox format and TetGen .node.
+// Reading point sets: plain text, Qhull's rbox format, TetGen .node, the binary
+// format (binary_points.hpp) and the POINTS of legacy VTK files (vtk.hpp).
 //
 // Plain text: one point per line, coordinates separated by whitespace, `#`
 // starts a comment; the dimension is the number of values on the first data line.
@@ -15,6 +16,8 @@
 #include <vector>
 
 namespace dewall::io {
+
+class Progress;
 
 /// Unreadable input; what() names the file and line.
 class Parse_error : public std::runtime_error {
@@ -34,13 +37,17 @@ struct Point_table {
 /// Reads plain text or rbox format from `in`; `name` is used in messages.
 /// \throws Parse_error on non-numbers, ragged rows, a dimension outside 2…6,
 /// a wrong count in rbox format, or no points.
-Point_table read_points(std::istream& in, const std::string& name);
+/// `progress`, when given, receives the number of bytes read so far.
+Point_table read_points(std::istream& in, const std::string& name, Progress* progress = nullptr);
 
 /// Reads TetGen .node from `in`.
-Point_table read_node(std::istream& in, const std::string& name);
+Point_table read_node(std::istream& in, const std::string& name, Progress* progress = nullptr);
 
-/// Reads a file by path: "-" is standard input; a ".node" extension selects
-/// TetGen's format, anything else plain text or rbox.
-Point_table read_points_file(const std::string& path);
+/// Reads a file by path ("-" is standard input), choosing the format by its
+/// content first: the magic bytes "DWPT" select the binary format, a first line
+/// "# vtk DataFile …" legacy VTK; then by extension: ".node" selects TetGen's
+/// format; anything else is plain text or rbox. `progress`, when given, shows a
+/// "reading" phase (a percentage for files, elapsed time for standard input).
+Point_table read_points_file(const std::string& path, Progress* progress = nullptr);
 
 }  // namespace dewall::io

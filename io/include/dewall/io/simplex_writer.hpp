@@ -1,14 +1,21 @@
-// Writing simplices: the plain list (one simplex per line, zero-based input
-// indices separated by single spaces) or TetGen .ele (chosen by extension).
+// Writing files: simplices as the plain list (one simplex per line, zero-based
+// input indices separated by single spaces), TetGen .ele or legacy VTK (chosen
+// by extension), and point sets as plain text, binary (.dwpt) or VTK. Every file
+// is written to a temporary name and renamed when complete.
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
 
+#include "dewall/io/point_reader.hpp"
+
 namespace dewall::io {
+
+class Progress;
 
 /// Simplices as rows of `vertices_per_simplex` indices, stored row after row.
 struct Simplex_table {
@@ -19,7 +26,8 @@ struct Simplex_table {
   }
 };
 
-void write_plain(std::ostream& out, const Simplex_table& t);
+/// `progress`, when given, receives the number of simplices written.
+void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress = nullptr);
 /// TetGen .ele: "<count> <vertices per simplex> 0", then "<i> <v0> … <vD>", with
 /// vertex numbers shifted by `first_index` (the numbering of the .node file).
 void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_index);
@@ -27,6 +35,30 @@ void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_inde
 /// Writes to `path` ("-" = standard output) atomically: to a temporary file in
 /// the same directory, renamed over `path` only when complete.
 /// \throws std::runtime_error when the file cannot be written.
-void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index);
+void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
+                          Progress* progress = nullptr);
+
+/// As write_simplices_file (numbered from points.first_index in .ele), and a
+/// ".vtk" extension writes legacy VTK, which needs the points too (see vtk.hpp). \throws Vtk_unsupported for VTK in
+/// dimension > 3 (before anything is written).
+void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
+                              Progress* progress = nullptr);
+
+/// True when `path` names a legacy VTK file (".vtk", any case).
+bool is_vtk_path(const std::string& path);
+
+/// One point per line, coordinates separated by single spaces, each in the
+/// shortest form that reads back to the same double (the round trip is exact).
+void write_points_text(std::ostream& out, const Point_table& t, Progress* progress = nullptr);
+
+/// Writes points to `path` ("-" = standard output) atomically: the binary format
+/// for ".dwpt", legacy VTK for ".vtk", plain text otherwise.
+void write_points_file(const std::string& path, const Point_table& t, Progress* progress = nullptr);
+
+/// Runs `write(stream)` on a temporary file next to `path` (opened in binary
+/// mode) and renames it over `path` when the stream is still good; standard
+/// output for "-". \throws std::runtime_error (naming `path`) when the file cannot
+/// be created or written; an exception from `write` removes the temporary file.
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace dewall::io

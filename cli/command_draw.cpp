@@ -1,0 +1,228 @@
+// dewall draw POINTS [SIMPLICES] [-o picture.svg] [--walls] [--width PX] [--quiet]
+//
+// An SVG picture of a 2D triangulation. With --walls each triangle is coloured
+// by the recursion level of the wall that built it, as in the paper's Figures
+// 2, 4 and 5: level 0 is the first wall (the triangles crossed by the first
+// splitting line), level 1 the two walls of the halves, and so on. The levels
+// are not stored in any file, so --walls triangulates POINTS again (the result
+// is the same canonical triangulation `dewall triangulate` writes).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <span>
+#include <sstream>
+#include <vector>
+
+#include "cli.hpp"
+#include "dewall/dewall.hpp"
+#include "dewall/io/progress.hpp"
+
+namespace dewall::cli {
+namespace {
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+/// The plain simplex list of a 2D triangulation: three indices per line, '#'
+/// comments. (Kept local and strict: the drawing needs nothing else.)
+std::vector<Triangle> read_triangles(const std::string& path, std::size_t point_count) {
+  std::ifstream file;
+  std::istream* in = &std::cin;
+  const std::string name = path == "-" ? "<stdin>" : path;
+  if (path != "-") {
+    file.open(path);
+    if (!file) throw io::Parse_error(path + ": cannot open file");
+    in = &file;
+  }
+  std::vector<Triangle> triangles;
+  std::string line;
+  for (std::size_t line_no = 1; std::getline(*in, line); ++line_no) {
+    std::istringstream ss(line.substr(0, line.find('#')));
+    std::vector<std::string> tokens;
+    for (std::string token; ss >> token;) tokens.push_back(token);
+    if (tokens.empty()) continue;
+    const std::string at = name + ":" + std::to_string(line_no) + ": ";
+    if (tokens.size() != 3)
+      throw io::Parse_error(at + "expected 3 point indices (a triangle), found " + std::to_string(tokens.size()));
+    Triangle t;
+    for (int i = 0; i < 3; ++i) {
+      const auto& token = tokens[static_cast<std::size_t>(i)];
+      char* end = nullptr;
+      const unsigned long long v = std::strtoull(token.c_str(), &end, 10);
+      if (*end != '\0' || token[0] == '-' || token[0] == '+')
+        throw io::Parse_error(at + "'" + token + "' is not a point index");
+      if (v >= point_count)
+        throw io::Parse_error(at + "point index " + token + " out of range (" + std::to_string(point_count) +
+                              " points)");
+      t[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(v);
+    }
+    triangles.push_back(t);
+  }
+  return triangles;
+}
+
+/// The triangulation of `table` with the wall level of each triangle.
+std::vector<std::pair<Triangle, int>> triangulate_with_levels(const io::Point_table& table) {
+  std::vector<kernel::Point_d<2>> points(table.size());
+  for (std::size_t i = 0; i < points.size(); ++i) points[i] = {{table.coordinates[2 * i], table.coordinates[2 * i + 1]}};
+  std::vector<std::pair<Triangle, int>> out;
+  triangulate_to<kernel::Filtered_kernel_d<2>>(std::span<const kernel::Point_d<2>>(points),
+                                               [&](const Simplex<2>& s, int level) { out.emplace_back(s, level); });
+  return out;
+}
+
+/// Fill colours by wall level: ten well-separated hues, repeated beyond.
+constexpr std::array<const char*, 10> palette = {"#e15759", "#4e79a7", "#f28e2b", "#76b7b2", "#59a14f",
+                                                 "#edc948", "#b07aa1", "#ff9da7", "#9c755f", "#bab0ac"};
+const char* unmatched_colour = "#dddddd";
+
+void write_svg(std::ostream& out, const io::Point_table& table, const std::vector<Triangle>& triangles,
+               const std::vector<int>& levels, int width, bool walls) {
+  const auto& c = table.coordinates;
+  double x0 = c[0], x1 = c[0], y0 = c[1], y1 = c[1];
+  for (std::size_t i = 0; i < table.size(); ++i) {
+    x0 = std::min(x0, c[2 * i]), x1 = std::max(x1, c[2 * i]);
+    y0 = std::min(y0, c[2 * i + 1]), y1 = std::max(y1, c[2 * i + 1]);
+  }
+  const double margin = 10, legend = walls ? 24 : 0;
+  const double span = std::max({x1 - x0, y1 - y0, 1e-300});
+  const double scale = (width - 2 * margin) / span;
+  const double height = std::ceil((y1 - y0) * scale + 2 * margin + legend);
+  // SVG's y axis points down: flip so the picture is the usual way up.
+  auto px = [&](std::uint32_t i) { return margin + (c[2 * i] - x0) * scale; };
+  auto py = [&](std::uint32_t i) { return height - margin - (c[2 * i + 1] - y0) * scale; };
+  char buffer[256];
+  std::snprintf(buffer, sizeof buffer,
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%.0f\" viewBox=\"0 0 %d %.0f\">\n",
+                width, height, width, height);
+  out << buffer;
+  out << "<title>Delaunay triangulation of " << table.size() << " points, " << triangles.size()
+      << " triangles (dewall)</title>\n";
+  out << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  const double stroke = triangles.size() > 20000 ? 0.2 : 0.6;
+  std::snprintf(buffer, sizeof buffer, "<g stroke=\"#333333\" stroke-width=\"%.1f\" stroke-linejoin=\"round\">\n",
+                stroke);
+  out << buffer;
+  for (std::size_t t = 0; t < triangles.size(); ++t) {
+    const auto& s = triangles[t];
+    const char* fill = !walls ? "#dce6f2"
+                       : levels[t] < 0 ? unmatched_colour
+                                       : palette[static_cast<std::size_t>(levels[t]) % palette.size()];
+    std::snprintf(buffer, sizeof buffer, "<polygon points=\"%.2f,%.2f %.2f,%.2f %.2f,%.2f\" fill=\"%s\"/>\n",
+                  px(s[0]), py(s[0]), px(s[1]), py(s[1]), px(s[2]), py(s[2]), fill);
+    out << buffer;
+  }
+  out << "</g>\n";
+  if (table.size() <= 20000) {
+    out << "<g fill=\"#111111\">\n";
+    for (std::uint32_t i = 0; i < table.size(); ++i) {
+      std::snprintf(buffer, sizeof buffer, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"1.5\"/>\n", px(i), py(i));
+      out << buffer;
+    }
+    out << "</g>\n";
+  }
+  if (walls) {
+    const int top = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
+    out << "<g font-family=\"sans-serif\" font-size=\"12\">\n<text x=\"" << margin << "\" y=\"" << margin + 12
+        << "\">wall level</text>\n";
+    for (int l = 0; l <= top; ++l) {
+      const double x = margin + 70 + 26 * l;
+      std::snprintf(buffer, sizeof buffer,
+                    "<rect x=\"%.0f\" y=\"%.0f\" width=\"22\" height=\"14\" fill=\"%s\" stroke=\"#333333\"/>"
+                    "<text x=\"%.0f\" y=\"%.0f\" text-anchor=\"middle\">%d</text>\n",
+                    x, margin + 1, palette[static_cast<std::size_t>(l) % palette.size()], x + 11, margin + 12, l);
+      out << buffer;
+    }
+    out << "</g>\n";
+  }
+  out << "</svg>\n";
+}
+
+}  // namespace
+
+int command_draw(int argc, char** argv) {
+  std::string points_path, simplices_path, output = "-";
+  bool walls = false, quiet = false;
+  long width = 800;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+    else if (a == "--walls") walls = true;
+    else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "width");
+    else if (a == "--quiet" || a == "-q") quiet = true;
+    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
+    else if (points_path.empty()) points_path = a;
+    else if (simplices_path.empty()) simplices_path = a;
+    else throw Usage_error("unexpected argument '" + a + "'");
+  }
+  if (points_path.empty()) throw Usage_error("draw needs a POINTS file");
+  if (!walls && simplices_path.empty()) throw Usage_error("draw needs a SIMPLICES file (or --walls)");
+  if (width < 100 || width > 100000) throw Usage_error("--width must be 100 to 100000 pixels");
+  if (points_path == "-" && simplices_path == "-" && !walls)
+    throw Usage_error("POINTS and SIMPLICES cannot both be standard input");
+
+  io::Progress progress(!quiet && io::stderr_is_terminal());
+  const auto table = io::read_points_file(points_path, &progress);
+  if (table.dimension != 2)
+    throw Usage_error("draw pictures 2D triangulations only; " + points_path + " holds points of dimension " +
+                      std::to_string(table.dimension));
+
+  std::vector<Triangle> triangles;
+  std::vector<int> levels;
+  if (walls) {
+    std::vector<std::pair<Triangle, int>> built;
+    try {
+      progress.phase("triangulating " + std::to_string(table.size()) + " points");
+      built = triangulate_with_levels(table);
+      progress.finish();
+    } catch (const Invalid_input& e) {
+      progress.finish();
+      std::fprintf(stderr, "dewall: %s: %s\n", points_path.c_str(), e.what());
+      return 1;
+    }
+    if (simplices_path.empty() || simplices_path == "-") {
+      for (const auto& [t, level] : built) triangles.push_back(t), levels.push_back(level);
+    } else {
+      // Draw the given triangles, each with the level of the same triangle
+      // (same vertex set) in the canonical triangulation; the others in grey.
+      std::map<Triangle, int> level_of;
+      for (auto [t, level] : built) std::sort(t.begin(), t.end()), level_of[t] = level;
+      triangles = read_triangles(simplices_path, table.size());
+      std::size_t unmatched = 0;
+      for (auto t : triangles) {
+        std::sort(t.begin(), t.end());
+        const auto it = level_of.find(t);
+        levels.push_back(it == level_of.end() ? -1 : it->second);
+        unmatched += it == level_of.end();
+      }
+      if (unmatched)
+        std::fprintf(stderr,
+                     "dewall draw: %zu of %zu triangles of %s are not in the canonical triangulation (drawn grey)\n",
+                     unmatched, triangles.size(), simplices_path.c_str());
+    }
+  } else {
+    triangles = read_triangles(simplices_path, table.size());
+  }
+  progress.phase("writing " + output);
+  io::write_file_atomically(output, [&](std::ostream& out) {
+    write_svg(out, table, triangles, levels, static_cast<int>(width), walls);
+  });
+  progress.finish();
+  return 0;
+}
+
+namespace {
+const bool registered = register_command({"draw", command_draw,
+    "  draw POINTS [SIMPLICES] [-o PICTURE.svg] [--walls] [--width PX] [--quiet]\n"
+    "      SVG picture of a 2D triangulation (default: standard output). SIMPLICES is\n"
+    "      a plain simplex list ('-' = standard input). --walls colours each triangle\n"
+    "      by the recursion level of the DeWall wall that built it (0: the first\n"
+    "      wall), as in the paper's figures; it triangulates POINTS again to learn\n"
+    "      the levels, so SIMPLICES may then be omitted (or '-'); when given, its\n"
+    "      triangles are drawn and those not in the canonical triangulation are grey.\n"});
+}  // namespace
+
+}  // namespace dewall::cli

@@ -1,0 +1,99 @@
+// dewall generate KIND N [--dim D] [--seed S] [-o FILE] [--quiet]
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <stdexcept>
+
+#include "cli.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "dewall/io/progress.hpp"
+
+namespace dewall::cli {
+namespace {
+
+/// A point count: an integer, also in the forms 1e6 or 2.5e5 (large counts are
+/// easier to type so), as long as the value is a whole number.
+std::size_t parse_count(const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0) || v != std::floor(v) || v > 1e12 ||
+      s.find_first_of("xXpP") != std::string::npos)  // no hexadecimal
+    throw Usage_error("invalid point count '" + s + "' (a whole number such as 1000 or 1e6)");
+  return static_cast<std::size_t>(v);
+}
+
+std::uint64_t parse_seed(const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno == ERANGE || s[0] == '-' || s[0] == '+')
+    throw Usage_error("invalid seed '" + s + "' (an integer from 0 to 2^64 - 1)");
+  return v;
+}
+
+}  // namespace
+
+int command_generate(int argc, char** argv) {
+  std::string kind_name, count, output = "-";
+  long dim = 3;
+  std::uint64_t seed = 0;
+  bool seeded = false, quiet = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+    else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+    else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
+    else if (a == "--quiet" || a == "-q") quiet = true;
+    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
+    else if (kind_name.empty()) kind_name = a;
+    else if (count.empty()) count = a;
+    else throw Usage_error("unexpected argument '" + a + "'");
+  }
+  if (kind_name.empty() || count.empty()) throw Usage_error("generate needs a KIND and a point count N");
+  const auto kind = io::parse_point_kind(kind_name);
+  if (!kind) throw Usage_error("unknown kind '" + kind_name + "' (one of " + io::point_kind_names() + ")");
+  const std::size_t n = parse_count(count);
+  if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6, not " + std::to_string(dim));
+  if (io::is_vtk_path(output) && dim > 3)
+    throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
+  if (!seeded) {
+    // Two draws: random_device yields 32 bits on common platforms.
+    std::random_device device;
+    seed = (static_cast<std::uint64_t>(device()) << 32) ^ device();
+  }
+  // The seed is what makes a run reproducible: print it unless the user both
+  // chose it and asked for silence.
+  if (!(quiet && seeded))
+    std::fprintf(stderr, "dewall generate: %s, %zu points asked, E^%ld, seed %llu\n", io::point_kind_name(*kind), n,
+                 dim, static_cast<unsigned long long>(seed));
+
+  io::Progress progress(!quiet && io::stderr_is_terminal());
+  io::Point_table table;
+  try {
+    table = io::generate_points(*kind, n, static_cast<int>(dim), seed, &progress);
+  } catch (const std::invalid_argument& e) {
+    throw Usage_error(e.what());
+  }
+  io::write_points_file(output, table, &progress);
+  progress.finish();
+  if (table.size() != n && !quiet)
+    std::fprintf(stderr, "dewall generate: %s made %zu points\n", io::point_kind_name(*kind), table.size());
+  return 0;
+}
+
+namespace {
+const bool registered = register_command({"generate", command_generate,
+    "  generate KIND N [--dim D] [--seed S] [-o FILE] [--quiet]\n"
+    "      Writes a point set of E^D (D = 2 to 6, default 3): KIND is uniform (unit\n"
+    "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
+    "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
+    "      one sphere, about N, exactly cospherical) or planes (on 2 to 8 parallel\n"
+    "      hyperplanes). N may be written 1e6. The seed (default: random) is printed\n"
+    "      on stderr. FILE: plain text (default: standard output), binary when it\n"
+    "      ends in .dwpt, VTK when it ends in .vtk (2D and 3D).\n"});
+}  // namespace
+
+}  // namespace dewall::cli

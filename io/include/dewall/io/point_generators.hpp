@@ -1,0 +1,52 @@
+// Point generators for `dewall generate`, benchmarks and tests: random sets
+// (uniform in a cube, in a ball, on a sphere, the paper's "bubbles") and exactly
+// degenerate ones (an integer grid, integer points on one sphere, points on
+// parallel planes), in E^2 … E^6.
+//
+// Randomness: one std::mt19937_64 seeded by the caller. The engine's sequence
+// is fixed by the C++ standard; the standard *distributions* are not, so the
+// conversions to doubles are written here (53 random bits per uniform double,
+// Marsaglia's polar method for normal deviates). The same seed therefore gives
+// the same points with any standard library; only std::log and std::sqrt in the
+// normal deviates could, in principle, differ in the last bit between C libraries.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "dewall/io/point_reader.hpp"
+
+namespace dewall::io {
+
+class Progress;
+
+/// The kinds of point sets `generate_points` makes.
+enum class Point_kind {
+  uniform,         ///< uniform in the unit cube [0, 1)^D
+  ball,            ///< uniform in the unit ball about the origin (|p|² ≤ 1 in double arithmetic)
+  sphere,          ///< uniform on the unit sphere (|p| = 1 up to rounding)
+  bubbles,         ///< Gaussian clusters in the unit cube: density falls off from each centre
+  grid,            ///< the integer lattice {0 … k−1}^D, k^D ≈ N (every point ties)
+  lattice_sphere,  ///< all integer points with |p|² = m, m chosen for about N points (exactly cospherical)
+  planes,          ///< points on a few hyperplanes x_{D−1} = const (exactly coplanar per plane)
+};
+
+/// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
+/// "lattice-sphere", "planes"), or nothing.
+std::optional<Point_kind> parse_point_kind(std::string_view name);
+/// The name of `kind`, as parse_point_kind accepts it.
+const char* point_kind_name(Point_kind kind);
+/// "uniform, ball, …": every name, for messages.
+std::string point_kind_names();
+
+/// A point set of `kind` in E^`dimension` (2 … 6) with about `n` points (exactly
+/// n for the random kinds), from an engine seeded with `seed`. The deterministic
+/// kinds (grid, lattice-sphere) ignore the seed.
+/// `progress`, when given, receives the number of points made so far.
+/// \throws std::invalid_argument for a dimension outside 2 … 6 or n < dimension + 1.
+Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
+                            Progress* progress = nullptr);
+
+}  // namespace dewall::io

@@ -1,0 +1,52 @@
+// Legacy VTK files (".vtk", ASCII), the format ParaView and VisIt open directly.
+//
+// Written: an UNSTRUCTURED_GRID whose POINTS are the input points (z = 0 in
+// 2D) and whose cells are the simplices — VTK_TRIANGLE (5) in 2D, VTK_TETRA (10)
+// in 3D, in our positive orientation, which is VTK's (a tetrahedron's fourth
+// point lies on the side its first three define by the right-hand rule) — or, for
+// a point file, one VTK_VERTEX (1) cell per point so that the points render.
+// Coordinates are written in the shortest form that reads back to the same
+// double, so a round trip through VTK is exact. VTK is a 3D format: dimensions
+// above 3 are refused.
+//
+// Read: the POINTS section of any legacy file (ASCII or BINARY, float or
+// double; POLYDATA, UNSTRUCTURED_GRID, STRUCTURED_GRID). VTK points always have
+// three coordinates; the point set is taken as 2D when every z is 0, else 3D.
+#pragma once
+
+#include <iosfwd>
+#include <stdexcept>
+#include <string>
+
+#include "dewall/io/point_reader.hpp"
+#include "dewall/io/simplex_writer.hpp"
+
+namespace dewall::io {
+
+class Progress;
+
+/// Thrown when a point set or triangulation cannot be written as VTK (dimension > 3).
+class Vtk_unsupported : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Writes `points` and the simplices `t` (indices into `points`) as a legacy
+/// ASCII UNSTRUCTURED_GRID. \throws Vtk_unsupported when the dimension is not 2 or 3.
+/// `progress`, when given, receives the number of points plus simplices written.
+void write_vtk_triangulation(std::ostream& out, const Point_table& points, const Simplex_table& t,
+                             Progress* progress = nullptr);
+
+/// Writes `points` alone, one VTK_VERTEX cell each. \throws Vtk_unsupported
+/// when the dimension is not 2 or 3.
+void write_vtk_points(std::ostream& out, const Point_table& points, Progress* progress = nullptr);
+
+/// Reads the POINTS section of a legacy VTK file; `name` is used in messages.
+/// \throws Parse_error (with the file and line) on a missing or malformed header
+/// or POINTS section, non-numbers, or a truncated section.
+Point_table read_vtk_points(std::istream& in, const std::string& name);
+
+/// True when `first_line` is the first line of a legacy VTK file ("# vtk DataFile …").
+bool is_vtk_header(const std::string& first_line);
+
+}  // namespace dewall::io

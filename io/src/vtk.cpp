@@ -1,0 +1,217 @@
+#include "dewall/io/vtk.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <istream>
+#include <ostream>
+#include <vector>
+
+#include "dewall/io/progress.hpp"
+
+namespace dewall::io {
+namespace {
+
+std::string where(const std::string& name, std::size_t line) { return name + ":" + std::to_string(line) + ": "; }
+
+/// Shortest decimal form that reads back to the same double (std::to_chars
+/// guarantees the round trip), so VTK output loses nothing.
+void append_number(std::string& s, double v) {
+  char buffer[32];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  s.append(buffer, r.ptr);
+}
+
+void check_writable(int dimension) {
+  if (dimension != 2 && dimension != 3)
+    throw Vtk_unsupported("VTK output supports points in 2D and 3D only; these are in dimension " +
+                          std::to_string(dimension) + " (write a plain simplex list instead)");
+}
+
+void write_header_and_points(std::ostream& out, const Point_table& p, const char* title, Progress* progress) {
+  out << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+  out << "POINTS " << p.size() << " double\n";
+  const auto d = static_cast<std::size_t>(p.dimension);
+  std::string line;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    line.clear();
+    for (std::size_t j = 0; j < d; ++j) {
+      if (j) line += ' ';
+      append_number(line, p.coordinates[i * d + j]);
+    }
+    if (d == 2) line += " 0";
+    line += '\n';
+    out << line;
+    if (progress && (i & 0xffff) == 0) progress->advance_to(i);
+  }
+}
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> tokens;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    if (j > i) tokens.push_back(line.substr(i, j - i));
+    i = j;
+  }
+  return tokens;
+}
+
+/// Reads `n` big-endian values of `Stored` (VTK's binary legacy files are
+/// big-endian whatever the host) into doubles.
+template <class Stored>
+void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, const std::string& name,
+                     std::size_t points) {
+  std::vector<unsigned char> bytes(n * sizeof(Stored));
+  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  if (static_cast<std::size_t>(in.gcount()) != bytes.size())
+    throw Parse_error(name + ": truncated: the POINTS section announces " + std::to_string(points) + " points (" +
+                      std::to_string(bytes.size()) + " bytes of binary data), the file has " +
+                      std::to_string(in.gcount()));
+  out.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    unsigned char b[sizeof(Stored)];
+    std::memcpy(b, &bytes[i * sizeof(Stored)], sizeof(Stored));
+    if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof(Stored));
+    Stored v;
+    std::memcpy(&v, b, sizeof(Stored));
+    out[i] = static_cast<double>(v);
+  }
+}
+
+}  // namespace
+
+bool is_vtk_header(const std::string& first_line) {
+  return lower(first_line).rfind("# vtk datafile", 0) == 0;
+}
+
+void write_vtk_triangulation(std::ostream& out, const Point_table& points, const Simplex_table& t,
+                             Progress* progress) {
+  check_writable(points.dimension);
+  if (t.vertices_per_simplex != points.dimension + 1)
+    throw Vtk_unsupported("VTK output: simplices of " + std::to_string(t.vertices_per_simplex) +
+                          " vertices do not match points of dimension " + std::to_string(points.dimension));
+  if (progress) progress->phase("writing VTK", points.size() + t.size());
+  write_header_and_points(out, points, "dewall Delaunay triangulation", progress);
+  const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
+  out << "CELLS " << t.size() << ' ' << t.size() * (k + 1) << '\n';
+  std::string line;
+  for (std::size_t s = 0; s < t.size(); ++s) {
+    line.assign(std::to_string(k));
+    for (std::size_t i = 0; i < k; ++i) {
+      line += ' ';
+      line += std::to_string(t.indices[s * k + i]);
+    }
+    line += '\n';
+    out << line;
+    if (progress && (s & 0xffff) == 0) progress->advance_to(points.size() + s);
+  }
+  out << "CELL_TYPES " << t.size() << '\n';
+  const char* type = points.dimension == 2 ? "5\n" : "10\n";  // VTK_TRIANGLE, VTK_TETRA
+  for (std::size_t s = 0; s < t.size(); ++s) out << type;
+  if (progress) progress->finish();
+}
+
+void write_vtk_points(std::ostream& out, const Point_table& points, Progress* progress) {
+  check_writable(points.dimension);
+  if (progress) progress->phase("writing VTK", 2 * points.size());
+  write_header_and_points(out, points, "dewall points", progress);
+  out << "CELLS " << points.size() << ' ' << 2 * points.size() << '\n';
+  for (std::size_t i = 0; i < points.size(); ++i) out << "1 " << i << '\n';
+  out << "CELL_TYPES " << points.size() << '\n';
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    out << "1\n";  // VTK_VERTEX
+    if (progress && (i & 0xffff) == 0) progress->advance_to(points.size() + i);
+  }
+  if (progress) progress->finish();
+}
+
+Point_table read_vtk_points(std::istream& in, const std::string& name) {
+  std::string line;
+  std::size_t line_no = 0;
+  auto next_line = [&] {
+    if (!std::getline(in, line)) return false;
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    return true;
+  };
+  if (!next_line() || !is_vtk_header(line))
+    throw Parse_error(where(name, 1) + "not a legacy VTK file (expected '# vtk DataFile Version …')");
+  if (!next_line()) throw Parse_error(name + ": truncated VTK header (no title line)");
+  if (!next_line()) throw Parse_error(name + ": truncated VTK header (no ASCII/BINARY line)");
+  const auto encoding = split(line);
+  const std::string mode = encoding.empty() ? "" : lower(encoding[0]);
+  if (mode != "ascii" && mode != "binary")
+    throw Parse_error(where(name, line_no) + "expected ASCII or BINARY, found '" + line + "'");
+
+  std::vector<std::string> tokens;
+  bool found = false;
+  while (!found && next_line()) {
+    tokens = split(line);
+    found = !tokens.empty() && lower(tokens[0]) == "points";
+  }
+  if (!found) throw Parse_error(name + ": no POINTS section (only datasets with explicit points can be read)");
+  const std::size_t points_line = line_no;
+  if (tokens.size() != 3) throw Parse_error(where(name, line_no) + "expected 'POINTS <count> <type>'");
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long count = std::strtoull(tokens[1].c_str(), &end, 10);
+  if (*end != '\0' || errno == ERANGE || tokens[1][0] == '-' || count > (1ull << 40))
+    throw Parse_error(where(name, line_no) + "invalid point count '" + tokens[1] + "'");
+  if (count == 0) throw Parse_error(where(name, line_no) + "no points");
+  const std::string type = lower(tokens[2]);
+  const std::size_t n = static_cast<std::size_t>(count) * 3;
+
+  std::vector<double> xyz;
+  if (mode == "binary") {
+    if (type == "double") read_big_endian<double>(in, n, xyz, name, count);
+    else if (type == "float") read_big_endian<float>(in, n, xyz, name, count);
+    else throw Parse_error(where(name, line_no) + "binary POINTS of type '" + tokens[2] + "' are not supported (float, double)");
+  } else {
+    xyz.reserve(n);
+    while (xyz.size() < n && next_line()) {
+      for (const auto& token : split(line)) {
+        if (xyz.size() == n) break;
+        char* stop = nullptr;
+        errno = 0;
+        const double v = std::strtod(token.c_str(), &stop);
+        if (*stop != '\0') throw Parse_error(where(name, line_no) + "'" + token + "' is not a number");
+        if (errno == ERANGE && std::isinf(v))
+          throw Parse_error(where(name, line_no) + "'" + token + "' is out of the range of double");
+        xyz.push_back(v);
+      }
+    }
+    if (xyz.size() != n)
+      throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + std::to_string(count) +
+                        " points (" + std::to_string(n) + " coordinates), the file has " +
+                        std::to_string(xyz.size()));
+  }
+
+  // VTK has no 2D point type: a plane drawing stores z = 0. A 3D set with every
+  // z equal to 0 could not be triangulated in E^3 anyway (it is flat).
+  bool flat = true;
+  for (std::size_t i = 2; i < n && flat; i += 3) flat = xyz[i] == 0;
+  Point_table t;
+  t.dimension = flat ? 2 : 3;
+  if (flat) {
+    t.coordinates.reserve(2 * static_cast<std::size_t>(count));
+    for (std::size_t i = 0; i < n; i += 3) t.coordinates.insert(t.coordinates.end(), {xyz[i], xyz[i + 1]});
+  } else {
+    t.coordinates = std::move(xyz);
+  }
+  return t;
+}
+
+}  // namespace dewall::io
