@@ -9,6 +9,7 @@
 
 #include <gmpxx.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -16,6 +17,10 @@
 namespace dewall::kernel {
 
 using Exact_integer = mpz_class;
+
+/// 128-bit integers (a GCC/Clang extension) for the exact stage's fast path.
+__extension__ typedef __int128 Int128;
+__extension__ typedef unsigned __int128 Uint128;
 
 namespace detail {
 
@@ -28,7 +33,12 @@ inline Split_double split(double v) {
   if (v == 0) return {0, std::numeric_limits<int>::max()};
   int e = 0;
   const double f = std::frexp(v, &e);  // v = f·2^e, 0.5 ≤ |f| < 1
-  return {static_cast<std::int64_t>(std::ldexp(f, 53)), e - 53};
+  std::int64_t m = static_cast<std::int64_t>(std::ldexp(f, 53));
+  e -= 53;
+  // An odd mantissa keeps small integers small (3.0 is 3·2^0, not 3·2^51·2^-51),
+  // which lets the 128-bit path below take exactly degenerate integer inputs.
+  const int zeros = std::countr_zero(static_cast<std::uint64_t>(m < 0 ? -m : m));
+  return {m >> zeros, e + zeros};
 }
 
 }  // namespace detail
@@ -43,6 +53,22 @@ class Common_scale {
       if (parts_[i].exponent < min_exponent_) min_exponent_ = parts_[i].exponent;
     }
   }
+  /// Whether every values[i]·2^-E fits in `bits` bits (plus sign).
+  bool fits(int bits) const {
+    for (const auto& s : parts_)
+      if (s.mantissa != 0 &&
+          static_cast<int>(std::bit_width(static_cast<std::uint64_t>(s.mantissa < 0 ? -s.mantissa : s.mantissa))) +
+                  (s.exponent - min_exponent_) > bits)
+        return false;
+    return true;
+  }
+  /// values[i]·2^-E as a 128-bit integer. \pre fits(bits) with bits < 127.
+  Int128 small_integer(int i) const {
+    const auto& s = parts_[i];
+    if (s.mantissa == 0) return 0;
+    return static_cast<Int128>(s.mantissa) * (static_cast<Int128>(1) << (s.exponent - min_exponent_));
+  }
+
   /// values[i]·2^-E as an exact integer.
   Exact_integer integer(int i) const {
     const auto& s = parts_[i];

@@ -17,7 +17,9 @@
 //   static Predicate_stats& stats();
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <optional>
 
@@ -69,6 +71,8 @@ template <class Recipe, int D>
   return std::nullopt;
 }
 
+constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1); }
+
 /// Stage 2: the same determinant in interval arithmetic (no domain limits).
 template <class Recipe, int D>
 std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
@@ -78,14 +82,46 @@ std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
   return std::nullopt;
 }
 
-/// Stage 3: the same determinant over GMP integers, exact for every finite input.
+/// Bits needed for |v| (v ≠ INT128_MIN).
+inline int bit_width_128(Int128 v) {
+  const Uint128 a = v < 0 ? -static_cast<Uint128>(v) : static_cast<Uint128>(v);
+  const auto high = static_cast<std::uint64_t>(a >> 64);
+  return static_cast<int>(high ? 64 + std::bit_width(high) : std::bit_width(static_cast<std::uint64_t>(a)));
+}
+
+/// Stage 3: the same determinant over exact integers: 128-bit integers when a
+/// bound proves they cannot overflow (exactly degenerate inputs are mostly small
+/// integers: lattices, cospherical integer points), GMP otherwise. Exact for
+/// every finite input.
+/// Overflow bound: every value the expansion forms (entries, partial sums,
+/// minors) is at most K!·Π_j M_j in magnitude, M_j the largest entry of column j
+/// (a minor of size r is a sum of r! products of entries from distinct columns).
+/// Inputs of at most 40 bits keep the entries themselves (differences, sums of
+/// D squares) below 2^90; the determinant path is taken when
+/// log2(K!) + Σ_j bits(M_j) ≤ 125.
 template <class Recipe, int D>
 Sign exact(const Point_refs<D, Recipe::arity>& p) {
   constexpr int N = Recipe::arity * D;
+  constexpr int K = Recipe::size;
   double coordinates[N];
   for (int i = 0; i < Recipe::arity; ++i)
     for (int j = 0; j < D; ++j) coordinates[i * D + j] = (*p[static_cast<std::size_t>(i)])[j];
   const Common_scale<N> scale(coordinates);
+  if (scale.fits(40)) {
+    Int128 small[N];
+    for (int k = 0; k < N; ++k) small[k] = scale.small_integer(k);
+    const auto m = Recipe::template matrix<Int128>([&](int i, int j) { return small[i * D + j]; });
+    int bits = static_cast<int>(std::bit_width(static_cast<unsigned>(factorial_int(K))));
+    for (int j = 0; j < K; ++j) {
+      int column = 0;
+      for (int i = 0; i < K; ++i) column = std::max(column, bit_width_128(m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]));
+      bits += column;
+    }
+    if (bits <= 125) {
+      const Int128 det = determinant<Int128, K>(m);
+      return Recipe::sign_adjust * (det > 0 ? POSITIVE : det < 0 ? NEGATIVE : ZERO);
+    }
+  }
   Exact_integer integers[N];
   for (int k = 0; k < N; ++k) integers[k] = scale.integer(k);
   const auto m = Recipe::template matrix<Exact_integer>(
