@@ -1,0 +1,10 @@
+# cmake -DBEFORE=exe -DAFTER=exe -P compare.cmake: both programs succeed and print the same.
+execute_process(COMMAND ${BEFORE} OUTPUT_VARIABLE before RESULT_VARIABLE rb)
+execute_process(COMMAND ${AFTER} OUTPUT_VARIABLE after RESULT_VARIABLE ra)
+message("before:\n${before}after:\n${after}")
+if(NOT rb EQUAL 0 OR NOT ra EQUAL 0)
+  message(FATAL_ERROR "a program failed: before ${rb}, after ${ra}")
+endif()
+if(NOT before STREQUAL after)
+  message(FATAL_ERROR "before and after differ")
+endif()
