@@ -81,30 +81,42 @@ class Face_side_filter {
   /// Shrinks the box [lo, hi] to a box that still holds every point of it
   /// strictly on the outer side of f; false when no point of it can be there.
   /// Proof: with d = x − f_0 (exact) and |Ĉ_j − C_j| ≤ e_j, orientation(f, x) =
-  /// Σ_j d_j C_j ≤ Σ_j d_j Ĉ_j + B, B = Σ_j max|d_j|·e_j over the box. So an outer x
-  /// has d_k Ĉ_k > −B − Σ_{j≠k} max_box(d_j Ĉ_j) =: −U_k, which bounds x_k on one
-  /// side. Everything is evaluated in outward-rounded interval arithmetic.
+  /// Σ_j d_j C_j ≤ Σ_j (d_j Ĉ_j + |d_j| e_j). An outer x therefore has
+  ///   d_k Ĉ_k + |d_k| e_k > −u_k,   u_k = Σ_{j≠k} max over the box of (d_j Ĉ_j + |d_j| e_j).
+  /// When Ĉ_k > e_k (the sign of C_k is certain), d_k < 0 needs d_k (Ĉ_k − e_k) > −u_k,
+  /// a lower bound on x_k; when u_k ≤ 0 even d_k > 0 is needed: x_k > f0_k
+  /// strictly, so a hull face whose plane carries other points (a lattice's
+  /// side) leaves no cell to scan. Symmetrically when Ĉ_k < −e_k. Everything is
+  /// evaluated in outward-rounded interval arithmetic.
   bool clip_to_outer_side(Coords<D>& lo, Coords<D>& hi) const {
     if (!valid_) return true;
     using kernel::Interval;
-    std::array<Interval, D> d, term;
-    Interval slack(0.0);
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    std::array<double, D> worst;  // max over the box of d_j Ĉ_j + |d_j| e_j, rounded up
     for (int j = 0; j < D; ++j) {
-      d[j] = Interval(lo[j]) - Interval(origin_[j]);
+      const Interval dl = Interval(lo[j]) - Interval(origin_[j]);
       const Interval dh = Interval(hi[j]) - Interval(origin_[j]);
-      d[j] = Interval(std::min(d[j].lo(), dh.lo()), std::max(d[j].hi(), dh.hi()));
-      term[j] = d[j] * Interval(cofactor_[j]);
-      slack += Interval(d[j].magnitude()) * Interval(error_[j]);
+      const Interval d(std::min(dl.lo(), dh.lo()), std::max(dl.hi(), dh.hi()));
+      worst[j] = ((d * Interval(cofactor_[j])) + Interval(d.magnitude()) * Interval(error_[j])).hi();
     }
     for (int k = 0; k < D; ++k) {
-      if (cofactor_[k] == 0) continue;
-      Interval u = slack;
+      const bool positive = cofactor_[k] > error_[k], negative = cofactor_[k] < -error_[k];
+      if (!positive && !negative) continue;
+      Interval u(0.0);
       for (int j = 0; j < D; ++j)
-        if (j != k) u += Interval(term[j].hi());
-      // Outer points satisfy d_k·Ĉ_k > −u.
-      const Interval limit = Interval(origin_[k]) - u / Interval(cofactor_[k]);
-      if (cofactor_[k] > 0) lo[k] = std::max(lo[k], limit.lo());
-      else hi[k] = std::min(hi[k], limit.hi());
+        if (j != k) u += Interval(worst[j]);
+      if (positive) {
+        // d_k > −u/(Ĉ_k − e_k) when u > 0; d_k > 0 when u ≤ 0.
+        const double limit = u.hi() > 0
+                                 ? (Interval(origin_[k]) - u / (Interval(cofactor_[k]) - Interval(error_[k]))).lo()
+                                 : std::nextafter(origin_[k], inf);
+        lo[k] = std::max(lo[k], limit);
+      } else {
+        const double limit = u.hi() > 0
+                                 ? (Interval(origin_[k]) + u / (Interval(-cofactor_[k]) - Interval(error_[k]))).hi()
+                                 : std::nextafter(origin_[k], -inf);
+        hi[k] = std::min(hi[k], limit);
+      }
       if (!(lo[k] <= hi[k])) return false;
     }
     return true;
