@@ -74,20 +74,27 @@ std::vector<std::string> split(const std::string& line) {
 template <class Stored>
 void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, const std::string& name,
                      std::size_t points) {
-  std::vector<unsigned char> bytes(n * sizeof(Stored));
-  in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (static_cast<std::size_t>(in.gcount()) != bytes.size())
-    throw Parse_error(name + ": truncated: the POINTS section announces " + std::to_string(points) + " points (" +
-                      std::to_string(bytes.size()) + " bytes of binary data), the file has " +
-                      std::to_string(in.gcount()));
-  out.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    unsigned char b[sizeof(Stored)];
-    std::memcpy(b, &bytes[i * sizeof(Stored)], sizeof(Stored));
-    if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof(Stored));
-    Stored v;
-    std::memcpy(&v, b, sizeof(Stored));
-    out[i] = static_cast<double>(v);
+  // Read in bounded chunks: the header's count is not trusted with an allocation
+  // before the bytes are there (a 100-byte file may announce 2^40 points: fuzz
+  // finding f2e10cdf).
+  constexpr std::size_t chunk_values = std::size_t{1} << 16;
+  std::vector<unsigned char> bytes;
+  out.clear();
+  while (out.size() < n) {
+    bytes.resize(std::min(chunk_values, n - out.size()) * sizeof(Stored));
+    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (static_cast<std::size_t>(in.gcount()) != bytes.size())
+      throw Parse_error(name + ": truncated: the POINTS section announces " + std::to_string(points) + " points (" +
+                        std::to_string(n * sizeof(Stored)) + " bytes of binary data), the file has " +
+                        std::to_string(out.size() * sizeof(Stored) + static_cast<std::size_t>(in.gcount())));
+    for (std::size_t i = 0; i < bytes.size(); i += sizeof(Stored)) {
+      unsigned char b[sizeof(Stored)];
+      std::memcpy(b, &bytes[i], sizeof(Stored));
+      if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof(Stored));
+      Stored v;
+      std::memcpy(&v, b, sizeof(Stored));
+      out.push_back(static_cast<double>(v));
+    }
   }
 }
 
@@ -180,7 +187,7 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
     else if (type == "float") read_big_endian<float>(in, n, xyz, name, count);
     else throw Parse_error(where(name, line_no) + "binary POINTS of type '" + tokens[2] + "' are not supported (float, double)");
   } else {
-    xyz.reserve(n);
+    xyz.reserve(std::min<std::size_t>(n, std::size_t{1} << 16));  // not trusting the count (f2e10cdf)
     while (xyz.size() < n && next_line()) {
       for (const auto& token : split(line)) {
         if (xyz.size() == n) break;
