@@ -176,7 +176,6 @@ class Certifier {
           ok = false;
         }
       if (!ok) continue;
-      for (std::uint32_t v : c) used_[v] = true;
       Cell sorted = c;
       std::sort(sorted.begin(), sorted.end());
       if (const auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end()) {
@@ -197,6 +196,7 @@ class Certifier {
         continue;
       }
       if (s == kernel::NEGATIVE) std::swap(c[0], c[1]);
+      for (std::uint32_t v : c) used_[v] = true;  // a vertex of a proper simplex only
       cells_.push_back(c);
       cell_row_.push_back(r);
     }
