@@ -14,6 +14,7 @@
 #include <iostream>
 #include <map>
 #include <span>
+#include <stdexcept>
 #include <sstream>
 #include <vector>
 
@@ -167,7 +168,7 @@ int command_draw(int argc, char** argv) {
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
   if (table.dimension != 2)
-    throw Usage_error("draw pictures 2D triangulations only; " + points_path + " holds points of dimension " +
+    throw std::runtime_error("draw pictures 2D triangulations only; " + points_path + " holds points of dimension " +
                       std::to_string(table.dimension));
 
   std::vector<Triangle> triangles;

@@ -4,6 +4,7 @@
 #include "cli.hpp"
 #include "dewall/error.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/vtk.hpp"
 
 namespace dewall::cli {
 
@@ -24,7 +25,7 @@ int command_triangulate(int argc, char** argv) {
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
   if (io::is_vtk_path(output) && table.dimension > 3)
-    throw Usage_error(output + ": VTK output supports 2D and 3D only; " + input + " holds points of dimension " +
+    throw io::Vtk_unsupported(output + ": VTK output supports 2D and 3D only; " + input + " holds points of dimension " +
                       std::to_string(table.dimension) + " (write a plain simplex list instead)");
   Run run;
   try {

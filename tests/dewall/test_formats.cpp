@@ -1,0 +1,368 @@
+// File formats: the binary .dwpt format (bit-exact round trip, clean errors on
+// truncated or foreign files), legacy VTK (written triangulations read back),
+// text points, the progress line, and the commands generate / triangulate /
+// draw through the real executable (exit codes, messages, no partial files).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <bit>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "dewall/dewall.hpp"
+#include "dewall/io/binary_points.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "dewall/io/point_reader.hpp"
+#include "dewall/io/progress.hpp"
+#include "dewall/io/simplex_writer.hpp"
+#include "dewall/io/vtk.hpp"
+
+using namespace dewall::io;
+
+namespace {
+
+bool same_bits(const Point_table& a, const Point_table& b) {
+  return a.dimension == b.dimension && a.coordinates.size() == b.coordinates.size() &&
+         std::memcmp(a.coordinates.data(), b.coordinates.data(), a.coordinates.size() * sizeof(double)) == 0;
+}
+
+/// Awkward doubles: signed zero, subnormals, extremes, NaN with a payload.
+Point_table awkward_points() {
+  Point_table t;
+  t.dimension = 3;
+  const double nan_payload = std::bit_cast<double>(std::uint64_t{0x7ff8000000012345});
+  t.coordinates = {0.0, -0.0, 1.0, std::numeric_limits<double>::denorm_min(), -5e-324, 0.1,
+                   std::numeric_limits<double>::max(), -std::numeric_limits<double>::max(), 1.0 / 3,
+                   std::numeric_limits<double>::infinity(), nan_payload, 123456789.123456789};
+  return t;
+}
+
+std::string binary_bytes(const Point_table& t) {
+  std::ostringstream out(std::ios::binary);
+  write_binary_points(out, t);
+  return out.str();
+}
+
+Point_table read_binary_string(const std::string& bytes) {
+  std::istringstream in(bytes, std::ios::binary);
+  return read_binary_points(in, "test.dwpt");
+}
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("binary points: bit-exact round trip and the documented layout", "[formats]") {
+  const auto t = awkward_points();
+  const auto bytes = binary_bytes(t);
+  REQUIRE(bytes.size() == binary_points_file_size(4, 3));
+  CHECK(bytes.substr(0, 4) == "DWPT");
+  CHECK(bytes[4] == 1);   // version, little-endian
+  CHECK(bytes[8] == 3);   // dimension
+  CHECK(bytes[16] == 4);  // count
+  double first;
+  std::memcpy(&first, bytes.data() + 24 + 16, 8);  // the third coordinate, little-endian on this host
+  CHECK(first == 1.0);
+  CHECK(same_bits(read_binary_string(bytes), t));
+
+  // Larger than one read chunk (2^20 doubles), through a file and the dispatch
+  // on the magic bytes whatever the extension.
+  const auto big = generate_points(Point_kind::uniform, 400000, 3, 8);
+  std::filesystem::create_directories("formats_test_tmp");
+  write_points_file("formats_test_tmp/big.txt.dwpt", big);
+  std::filesystem::rename("formats_test_tmp/big.txt.dwpt", "formats_test_tmp/big_binary.txt");
+  CHECK(same_bits(read_points_file("formats_test_tmp/big_binary.txt"), big));
+}
+
+TEST_CASE("binary points: truncated and foreign files are clean errors", "[formats]") {
+  const auto bytes = binary_bytes(awkward_points());
+  for (std::size_t size = 0; size < bytes.size(); ++size) {
+    INFO("first " << size << " bytes");
+    CHECK_THROWS_AS(read_binary_string(bytes.substr(0, size)), Parse_error);
+  }
+  CHECK_THROWS_WITH(read_binary_string(bytes.substr(0, 50)), Catch::Contains("truncated") && Catch::Contains("test.dwpt"));
+  CHECK_THROWS_WITH(read_binary_string(bytes + "x"), Catch::Contains("after the last point"));
+  auto patched = [&](std::size_t offset, char value) {
+    auto b = bytes;
+    b[offset] = value;
+    return b;
+  };
+  CHECK_THROWS_WITH(read_binary_string(patched(0, 'X')), Catch::Contains("not a binary point file"));
+  CHECK_THROWS_WITH(read_binary_string(patched(4, 2)), Catch::Contains("version 2"));
+  CHECK_THROWS_WITH(read_binary_string(patched(8, 7)), Catch::Contains("dimension 7"));
+  CHECK_THROWS_WITH(read_binary_string(patched(12, 1)), Catch::Contains("flags"));
+  CHECK_THROWS_WITH(read_binary_string(patched(23, 0x7f)), Catch::Contains("impossible point count"));
+  auto zero = bytes.substr(0, 24);
+  zero[16] = 0;
+  CHECK_THROWS_WITH(read_binary_string(zero), Catch::Contains("no points"));
+}
+
+TEST_CASE("text points: shortest round-trip form reads back exactly", "[formats]") {
+  const auto t = generate_points(Point_kind::bubbles, 500, 4, 21);
+  std::ostringstream out;
+  write_points_text(out, t);
+  std::istringstream in(out.str());
+  CHECK(same_bits(read_points(in, "text"), t));
+}
+
+TEST_CASE("VTK: written triangulations read back, positively oriented", "[formats]") {
+  for (int d : {2, 3}) {
+    INFO("dimension " << d);
+    const auto points = generate_points(Point_kind::ball, 200, d, 31);
+    Simplex_table simplices;
+    simplices.vertices_per_simplex = d + 1;
+    std::vector<dewall::kernel::Point_d<3>> p3(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i)
+      for (int j = 0; j < d; ++j) p3[i][j] = points.coordinates[i * std::size_t(d) + std::size_t(j)];
+    if (d == 2) {
+      std::vector<dewall::kernel::Point_d<2>> p2(points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) p2[i] = {{p3[i][0], p3[i][1]}};
+      for (const auto& s : dewall::triangulate<2>(p2).simplices) simplices.indices.insert(simplices.indices.end(), s.begin(), s.end());
+    } else {
+      for (const auto& s : dewall::triangulate<3>(p3).simplices) simplices.indices.insert(simplices.indices.end(), s.begin(), s.end());
+    }
+    std::ostringstream out;
+    write_vtk_triangulation(out, points, simplices);
+    const std::string text = out.str();
+    std::istringstream in(text);
+    CHECK(same_bits(read_vtk_points(in, "t.vtk"), points));
+
+    // The cells: count, sizes, types, and VTK's orientation (the fourth point of
+    // a tetrahedron on the positive side of the first three; counterclockwise
+    // triangles).
+    std::istringstream cells(text.substr(text.find("CELLS ")));
+    std::string keyword;
+    std::size_t count = 0, size = 0;
+    cells >> keyword >> count >> size;
+    REQUIRE(count == simplices.size());
+    REQUIRE(size == count * std::size_t(d + 2));
+    for (std::size_t s = 0; s < count; ++s) {
+      std::size_t k;
+      std::array<std::size_t, 4> v{};
+      cells >> k;
+      REQUIRE(k == std::size_t(d + 1));
+      for (std::size_t i = 0; i < k; ++i) cells >> v[i];
+      auto e = [&](int a, int j) { return p3[v[std::size_t(a)]][j] - p3[v[0]][j]; };
+      const double det = d == 2 ? e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0)
+                                : e(1, 0) * (e(2, 1) * e(3, 2) - e(2, 2) * e(3, 1)) -
+                                      e(1, 1) * (e(2, 0) * e(3, 2) - e(2, 2) * e(3, 0)) +
+                                      e(1, 2) * (e(2, 0) * e(3, 1) - e(2, 1) * e(3, 0));
+      REQUIRE(det > 0);
+    }
+    cells >> keyword >> count;
+    CHECK(keyword == "CELL_TYPES");
+    int type;
+    cells >> type;
+    CHECK(type == (d == 2 ? 5 : 10));
+  }
+}
+
+TEST_CASE("VTK: points, binary legacy files, errors", "[formats]") {
+  SECTION("4D is refused") {
+    const auto p = generate_points(Point_kind::uniform, 10, 4, 1);
+    std::ostringstream out;
+    CHECK_THROWS_AS(write_vtk_points(out, p), Vtk_unsupported);
+  }
+  SECTION("a 3D point file round-trips") {
+    const auto p = generate_points(Point_kind::sphere, 100, 3, 1);
+    std::ostringstream out;
+    write_vtk_points(out, p);
+    std::istringstream in(out.str());
+    CHECK(same_bits(read_vtk_points(in, "p.vtk"), p));
+  }
+  SECTION("BINARY legacy POINTS (big-endian float), as ParaView may save them") {
+    std::string file = "# vtk DataFile Version 4.2\nsaved\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n";
+    for (float v : {1.0f, 2.0f, 3.0f, 4.5f, 5.0f, 6.0f, -1.0f, 0.0f, 0.25f}) {
+      const auto bits = std::bit_cast<std::uint32_t>(v);
+      for (int shift = 24; shift >= 0; shift -= 8) file += static_cast<char>((bits >> shift) & 0xff);
+    }
+    file += "\nVERTICES 0 0\n";
+    std::istringstream in(file);
+    const auto t = read_vtk_points(in, "b.vtk");
+    CHECK(t.dimension == 3);
+    CHECK(t.coordinates == std::vector<double>{1, 2, 3, 4.5, 5, 6, -1, 0, 0.25});
+  }
+  SECTION("errors name the file and line") {
+    std::istringstream no_header("POINTS 1 double\n0 0 0\n");
+    CHECK_THROWS_WITH(read_vtk_points(no_header, "a.vtk"), Catch::Contains("a.vtk:1") && Catch::Contains("not a legacy VTK"));
+    std::istringstream no_points("# vtk DataFile Version 3.0\nt\nASCII\nDATASET STRUCTURED_POINTS\nDIMENSIONS 2 2 2\n");
+    CHECK_THROWS_WITH(read_vtk_points(no_points, "b.vtk"), Catch::Contains("no POINTS"));
+    std::istringstream bad("# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 2 double\n0 0 0\n1 x 0\n");
+    CHECK_THROWS_WITH(read_vtk_points(bad, "c.vtk"), Catch::Contains("c.vtk:7: 'x' is not a number"));
+    std::istringstream short_section("# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 double\n0 0 0\n");
+    CHECK_THROWS_WITH(read_vtk_points(short_section, "d.vtk"), Catch::Contains("truncated"));
+  }
+}
+
+TEST_CASE("atomic writes leave nothing behind on failure", "[formats]") {
+  std::filesystem::create_directories("formats_test_tmp");
+  const std::string path = "formats_test_tmp/never.out";
+  std::filesystem::remove(path);
+  CHECK_THROWS(write_file_atomically(path, [](std::ostream& out) {
+    out << "partial";
+    throw std::runtime_error("stop");
+  }));
+  CHECK(!std::filesystem::exists(path));
+  for (const auto& entry : std::filesystem::directory_iterator("formats_test_tmp"))
+    CHECK(entry.path().filename().string().find("never.out.tmp") == std::string::npos);
+}
+
+TEST_CASE("progress: silent when disabled, a line per phase when shown", "[formats]") {
+  std::FILE* sink = std::tmpfile();
+  REQUIRE(sink);
+  {
+    Progress off(false, sink, 0);
+    off.phase("reading", 10);
+    off.advance_to(5);
+    off.finish();
+  }
+  CHECK(std::ftell(sink) == 0);
+  {
+    Progress on(true, sink, 0);  // no delay: shown at the first redraw
+    on.phase("writing things", 100);
+    on.advance_to(50);
+    std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    on.finish();
+  }
+  std::rewind(sink);
+  std::string text(4096, '\0');
+  text.resize(std::fread(text.data(), 1, text.size(), sink));
+  std::fclose(sink);
+  CHECK(text.find("writing things") != std::string::npos);
+  CHECK(text.find("100%") != std::string::npos);  // the final line
+  CHECK(text.back() == '\n');
+}
+
+namespace {
+
+struct Cli_result {
+  int status;
+  std::string out, err;
+};
+
+/// Runs `dewall ARGS` (DEWALL_CLI_PATH, set by CMake) in formats_test_tmp/, with
+/// standard error not a terminal (so no progress line).
+Cli_result dewall_cli(const std::string& args, const std::string& before = "") {
+  const std::string dir = "formats_test_tmp";
+  std::filesystem::create_directories(dir);
+  const std::string cmd = "cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args +
+                          " > out.txt 2> err.txt" + (before.empty() ? " < /dev/null" : "");
+  const int raw = std::system(cmd.c_str());
+  return {WEXITSTATUS(raw), slurp(dir + "/out.txt"), slurp(dir + "/err.txt")};
+}
+
+}  // namespace
+
+TEST_CASE("command line: generate", "[cli][formats]") {
+  SECTION("seeded runs are identical, and the seed is printed") {
+    const auto a = dewall_cli("generate bubbles 100 --dim 2 --seed 77");
+    const auto b = dewall_cli("generate bubbles 100 --dim 2 --seed 77");
+    CHECK(a.status == 0);
+    CHECK(a.out == b.out);
+    CHECK(std::count(a.out.begin(), a.out.end(), '\n') == 100);
+    CHECK(a.err.find("seed 77") != std::string::npos);
+    const auto random = dewall_cli("generate uniform 10");
+    CHECK(random.status == 0);
+    CHECK(random.err.find("seed ") != std::string::npos);
+  }
+  SECTION("binary output, read back by triangulate, equal to text") {
+    CHECK(dewall_cli("generate lattice-sphere 200 --dim 3 -o ls.dwpt").status == 0);
+    CHECK(dewall_cli("generate lattice-sphere 200 --dim 3 -o ls.txt").status == 0);
+    const auto from_binary = dewall_cli("triangulate ls.dwpt");
+    const auto from_text = dewall_cli("triangulate ls.txt");
+    CHECK(from_binary.status == 0);
+    CHECK(!from_binary.out.empty());
+    CHECK(from_binary.out == from_text.out);
+    // A pipe (not seekable) goes through the streaming reader.
+    CHECK(dewall_cli("triangulate -", "cat ls.dwpt | ").out == from_text.out);
+  }
+  SECTION("usage errors exit 2") {
+    CHECK(dewall_cli("generate cube 100").status == 2);
+    CHECK(dewall_cli("generate cube 100").err.find("lattice-sphere") != std::string::npos);
+    CHECK(dewall_cli("generate uniform lots").status == 2);
+    CHECK(dewall_cli("generate uniform 100 --dim 7").status == 2);
+    CHECK(dewall_cli("generate uniform 2 --dim 3").status == 2);
+    CHECK(dewall_cli("generate uniform 100 --seed -4").status == 2);
+    CHECK(dewall_cli("generate uniform").status == 2);
+    CHECK(dewall_cli("generate uniform 100 --dim 4 -o p.vtk").status == 2);
+    CHECK(dewall_cli("generate uniform 1e3 --dim 2 -q").status == 0);
+  }
+}
+
+TEST_CASE("command line: triangulate with binary and VTK files", "[cli][formats]") {
+  REQUIRE(dewall_cli("generate ball 300 --dim 3 --seed 5 -o b3.dwpt").status == 0);
+  SECTION("VTK out, VTK in: the same triangulation") {
+    CHECK(dewall_cli("triangulate b3.dwpt -o b3.vtk").status == 0);
+    CHECK(slurp("formats_test_tmp/b3.vtk").find("CELL_TYPES") != std::string::npos);
+    CHECK(dewall_cli("triangulate b3.vtk").out == dewall_cli("triangulate b3.dwpt").out);
+  }
+  SECTION("VTK in 4D: a clear error and no file") {
+    REQUIRE(dewall_cli("generate uniform 50 --dim 4 --seed 5 -o u4.dwpt").status == 0);
+    std::filesystem::remove("formats_test_tmp/u4.vtk");
+    const auto r = dewall_cli("triangulate u4.dwpt -o u4.vtk");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("2D and 3D only") != std::string::npos);
+    CHECK(!std::filesystem::exists("formats_test_tmp/u4.vtk"));
+  }
+  SECTION("truncated binary file: exit 2, file named") {
+    const auto bytes = slurp("formats_test_tmp/b3.dwpt");
+    std::ofstream("formats_test_tmp/cut.dwpt", std::ios::binary) << bytes.substr(0, 1000);
+    const auto r = dewall_cli("triangulate cut.dwpt");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("cut.dwpt: truncated") != std::string::npos);
+    CHECK(dewall_cli("triangulate -", "cat cut.dwpt | ").status == 2);
+  }
+  SECTION("--quiet and a non-terminal stderr print nothing") {
+    CHECK(dewall_cli("triangulate b3.dwpt -o b3.txt --quiet").err.empty());
+    CHECK(dewall_cli("triangulate b3.dwpt -o b3.txt").err.empty());
+  }
+}
+
+TEST_CASE("command line: draw", "[cli][formats]") {
+  REQUIRE(dewall_cli("generate bubbles 200 --dim 2 --seed 3 -o p2.txt").status == 0);
+  REQUIRE(dewall_cli("triangulate p2.txt -o s2.txt").status == 0);
+  const auto list = slurp("formats_test_tmp/s2.txt");
+  const auto triangles = static_cast<std::size_t>(std::count(list.begin(), list.end(), '\n'));
+  auto polygons = [](const std::string& svg) {
+    std::size_t n = 0;
+    for (auto at = svg.find("<polygon"); at != std::string::npos; at = svg.find("<polygon", at + 1)) ++n;
+    return n;
+  };
+  SECTION("the triangulation") {
+    CHECK(dewall_cli("draw p2.txt s2.txt -o t.svg").status == 0);
+    const auto svg = slurp("formats_test_tmp/t.svg");
+    CHECK(svg.rfind("<svg", 0) == 0);
+    CHECK(polygons(svg) == triangles);
+  }
+  SECTION("--walls: every triangle coloured by a level, level 0 present") {
+    CHECK(dewall_cli("draw p2.txt --walls -o w.svg").status == 0);
+    const auto svg = slurp("formats_test_tmp/w.svg");
+    CHECK(polygons(svg) == triangles);
+    CHECK(svg.find("wall level") != std::string::npos);
+    CHECK(svg.find("#e15759") != std::string::npos);  // level 0's colour
+    CHECK(svg.find("#dddddd") == std::string::npos);  // nothing unmatched
+    CHECK(dewall_cli("draw p2.txt s2.txt --walls -o w2.svg").status == 0);
+    CHECK(slurp("formats_test_tmp/w2.svg") == svg);
+  }
+  SECTION("errors") {
+    std::ofstream("formats_test_tmp/bad.txt") << "0 1 2\n0 1 999\n";
+    const auto r = dewall_cli("draw p2.txt bad.txt -o x.svg");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("bad.txt:2") != std::string::npos);
+    CHECK(dewall_cli("draw p2.txt -o x.svg").status == 2);  // no SIMPLICES, no --walls
+    REQUIRE(dewall_cli("generate uniform 20 --dim 3 -o p3.txt").status == 0);
+    CHECK(dewall_cli("draw p3.txt --walls -o x.svg").status == 2);
+  }
+}

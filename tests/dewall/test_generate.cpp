@@ -1,0 +1,180 @@
+// The point generators behind `dewall generate`: reproducible from a seed, and
+// each kind keeps its promise exactly (integer grids, exactly cospherical lattice
+// points, exactly coplanar planes, radius bounds), in every dimension 2 … 6.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <set>
+#include <span>
+#include <vector>
+
+#include "dewall/dewall.hpp"
+#include "dewall/io/point_generators.hpp"
+
+using dewall::io::generate_points;
+using dewall::io::Point_kind;
+using dewall::io::Point_table;
+
+namespace {
+
+constexpr Point_kind all_kinds[] = {Point_kind::uniform, Point_kind::ball,           Point_kind::sphere,
+                                    Point_kind::bubbles, Point_kind::grid,           Point_kind::lattice_sphere,
+                                    Point_kind::planes};
+constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball, Point_kind::sphere,
+                                       Point_kind::bubbles, Point_kind::planes};
+
+double coordinate(const Point_table& t, std::size_t i, int j) {
+  return t.coordinates[i * static_cast<std::size_t>(t.dimension) + static_cast<std::size_t>(j)];
+}
+
+bool is_integer(double v) { return std::isfinite(v) && v == std::floor(v) && std::abs(v) < 0x1p53; }
+
+template <int D>
+std::size_t triangulated_simplices(const Point_table& t) {
+  std::vector<dewall::kernel::Point_d<D>> p(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (int j = 0; j < D; ++j) p[i][j] = coordinate(t, i, j);
+  return dewall::triangulate<D>(p).simplices.size();
+}
+
+}  // namespace
+
+TEST_CASE("generators: names round-trip", "[generate]") {
+  for (auto kind : all_kinds) CHECK(dewall::io::parse_point_kind(dewall::io::point_kind_name(kind)) == kind);
+  CHECK(!dewall::io::parse_point_kind("cube"));
+  CHECK(dewall::io::point_kind_names().find("lattice-sphere") != std::string::npos);
+}
+
+TEST_CASE("generators: reproducible from the seed, different for another seed", "[generate]") {
+  for (int d = 2; d <= 6; ++d)
+    for (auto kind : all_kinds) {
+      INFO("kind " << dewall::io::point_kind_name(kind) << ", dimension " << d);
+      const auto a = generate_points(kind, 200, d, 12345);
+      const auto b = generate_points(kind, 200, d, 12345);
+      REQUIRE(a.dimension == d);
+      REQUIRE(a.coordinates.size() == b.coordinates.size());
+      CHECK(std::memcmp(a.coordinates.data(), b.coordinates.data(), a.coordinates.size() * sizeof(double)) == 0);
+      for (double v : a.coordinates) REQUIRE(std::isfinite(v));
+      if (std::find(std::begin(random_kinds), std::end(random_kinds), kind) != std::end(random_kinds)) {
+        CHECK(a.size() == 200);
+        CHECK(generate_points(kind, 200, d, 12346).coordinates != a.coordinates);
+      }
+    }
+}
+
+TEST_CASE("generators: uniform, ball and sphere bounds", "[generate]") {
+  for (int d = 2; d <= 6; ++d) {
+    INFO("dimension " << d);
+    const auto u = generate_points(Point_kind::uniform, 500, d, 1);
+    for (double v : u.coordinates) REQUIRE((v >= 0 && v < 1));
+    const auto b = generate_points(Point_kind::ball, 500, d, 2);
+    const auto s = generate_points(Point_kind::sphere, 500, d, 3);
+    for (std::size_t i = 0; i < 500; ++i) {
+      double nb = 0, ns = 0;
+      for (int j = 0; j < d; ++j) nb += coordinate(b, i, j) * coordinate(b, i, j), ns += coordinate(s, i, j) * coordinate(s, i, j);
+      REQUIRE(nb <= 1.0);  // promised in double arithmetic, no tolerance
+      REQUIRE(std::abs(std::sqrt(ns) - 1) <= 1e-14);
+    }
+  }
+}
+
+TEST_CASE("generators: grid is the integer lattice", "[generate]") {
+  for (int d = 2; d <= 6; ++d) {
+    const auto g = generate_points(Point_kind::grid, 1000, d, 0);
+    const auto k = static_cast<std::size_t>(std::llround(std::pow(1000.0, 1.0 / d)));
+    INFO("dimension " << d << ", side " << k);
+    CHECK(g.size() == static_cast<std::size_t>(std::llround(std::pow(double(k), d))));
+    std::set<std::vector<double>> distinct;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      std::vector<double> p;
+      for (int j = 0; j < d; ++j) {
+        const double v = coordinate(g, i, j);
+        REQUIRE(is_integer(v));
+        REQUIRE((v >= 0 && v < double(k)));
+        p.push_back(v);
+      }
+      distinct.insert(p);
+    }
+    CHECK(distinct.size() == g.size());
+  }
+}
+
+TEST_CASE("generators: lattice-sphere points are exactly cospherical integers", "[generate]") {
+  struct Case {
+    int d;
+    std::size_t n;
+  };
+  for (auto [d, n] : {Case{2, 10}, Case{2, 1000}, Case{2, 100000}, Case{3, 10}, Case{3, 2000}, Case{4, 300},
+                      Case{4, 5000}, Case{5, 1000}, Case{6, 3000}}) {
+    INFO("dimension " << d << ", about " << n << " points");
+    const auto t = generate_points(Point_kind::lattice_sphere, n, d, 0);
+    // "About n": within a factor 2 (the count follows the divisors of |p|²).
+    CHECK(t.size() * 2 >= n);
+    CHECK(t.size() <= 2 * n);
+    __extension__ typedef __int128 Int128;  // squared norms reach 2^100 in 2D
+    Int128 norm = -1;
+    std::set<std::vector<double>> distinct;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      Int128 s = 0;
+      std::vector<double> p;
+      for (int j = 0; j < d; ++j) {
+        const double v = coordinate(t, i, j);
+        REQUIRE(is_integer(v));
+        s += static_cast<Int128>(v) * static_cast<Int128>(v);
+        p.push_back(v);
+      }
+      if (norm < 0) norm = s;
+      REQUIRE(s == norm);
+      distinct.insert(p);
+    }
+    CHECK(distinct.size() == t.size());
+  }
+}
+
+TEST_CASE("generators: planes are exactly coplanar, a few of them", "[generate]") {
+  for (int d = 2; d <= 6; ++d) {
+    INFO("dimension " << d);
+    const auto t = generate_points(Point_kind::planes, 1000, d, 9);
+    std::map<double, std::size_t> per_plane;  // the last coordinate is the plane
+    for (std::size_t i = 0; i < t.size(); ++i) ++per_plane[coordinate(t, i, d - 1)];
+    CHECK(per_plane.size() >= 2);
+    CHECK(per_plane.size() <= 8);
+    for (auto [height, count] : per_plane) CHECK(count >= 1000 / per_plane.size());
+  }
+}
+
+TEST_CASE("generators: bubbles are clustered", "[generate]") {
+  // Density falls off from the centres: most points are much closer to their
+  // nearest neighbour than uniform points would be.
+  const auto b = generate_points(Point_kind::bubbles, 1000, 2, 4);
+  const auto u = generate_points(Point_kind::uniform, 1000, 2, 4);
+  auto mean_nearest = [](const Point_table& t) {
+    double sum = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      double best = 1e300;
+      for (std::size_t k = 0; k < t.size(); ++k)
+        if (k != i)
+          best = std::min(best, std::hypot(coordinate(t, i, 0) - coordinate(t, k, 0), coordinate(t, i, 1) - coordinate(t, k, 1)));
+      sum += best;
+    }
+    return sum / double(t.size());
+  };
+  CHECK(mean_nearest(b) < 0.7 * mean_nearest(u));
+}
+
+TEST_CASE("generators: every kind triangulates", "[generate]") {
+  for (auto kind : all_kinds) {
+    INFO("kind " << dewall::io::point_kind_name(kind));
+    CHECK(triangulated_simplices<2>(generate_points(kind, 300, 2, 5)) > 0);
+    CHECK(triangulated_simplices<3>(generate_points(kind, 150, 3, 5)) > 0);
+  }
+}
+
+TEST_CASE("generators: bad arguments", "[generate]") {
+  CHECK_THROWS_AS(generate_points(Point_kind::uniform, 100, 7, 0), std::invalid_argument);
+  CHECK_THROWS_AS(generate_points(Point_kind::uniform, 100, 1, 0), std::invalid_argument);
+  CHECK_THROWS_WITH(generate_points(Point_kind::ball, 3, 3, 0), Catch::Contains("at least 4 points"));
+}
