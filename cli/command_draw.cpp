@@ -10,58 +10,36 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <iostream>
 #include <map>
 #include <span>
 #include <stdexcept>
-#include <sstream>
 #include <vector>
 
 #include "cli.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/simplex_reader.hpp"
 
 namespace dewall::cli {
 namespace {
 
 using Triangle = std::array<std::uint32_t, 3>;
 
-/// The plain simplex list of a 2D triangulation: three indices per line, '#'
-/// comments. (Kept local and strict: the drawing needs nothing else.)
-std::vector<Triangle> read_triangles(const std::string& path, std::size_t point_count) {
-  std::ifstream file;
-  std::istream* in = &std::cin;
+/// The triangles of SIMPLICES (plain list, Qhull's `qdelaunay Qt i` or TetGen
+/// .ele: io/simplex_reader.hpp), each index checked against the point count.
+std::vector<Triangle> read_triangles(const std::string& path, const io::Point_table& table) {
+  const auto list = io::read_simplices_file(path, 2, table.first_index);
   const std::string name = path == "-" ? "<stdin>" : path;
-  if (path != "-") {
-    file.open(path);
-    if (!file) throw io::Parse_error(path + ": cannot open file");
-    in = &file;
-  }
-  std::vector<Triangle> triangles;
-  std::string line;
-  for (std::size_t line_no = 1; std::getline(*in, line); ++line_no) {
-    std::istringstream ss(line.substr(0, line.find('#')));
-    std::vector<std::string> tokens;
-    for (std::string token; ss >> token;) tokens.push_back(token);
-    if (tokens.empty()) continue;
-    const std::string at = name + ":" + std::to_string(line_no) + ": ";
-    if (tokens.size() != 3)
-      throw io::Parse_error(at + "expected 3 point indices (a triangle), found " + std::to_string(tokens.size()));
-    Triangle t;
-    for (int i = 0; i < 3; ++i) {
-      const auto& token = tokens[static_cast<std::size_t>(i)];
-      char* end = nullptr;
-      const unsigned long long v = std::strtoull(token.c_str(), &end, 10);
-      if (*end != '\0' || token[0] == '-' || token[0] == '+')
-        throw io::Parse_error(at + "'" + token + "' is not a point index");
-      if (v >= point_count)
-        throw io::Parse_error(at + "point index " + token + " out of range (" + std::to_string(point_count) +
-                              " points)");
-      t[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(v);
+  std::vector<Triangle> triangles(list.table.size());
+  for (std::size_t r = 0; r < triangles.size(); ++r)
+    for (std::size_t i = 0; i < 3; ++i) {
+      const auto v = list.table.indices[3 * r + i];
+      if (v >= table.size())
+        throw io::Parse_error(name + ":" + std::to_string(list.lines[r]) + ": point index " +
+                              std::to_string(v + table.first_index) + " out of range (" +
+                              std::to_string(table.size()) + " points)");
+      triangles[r][i] = v;
     }
-    triangles.push_back(t);
-  }
   return triangles;
 }
 
@@ -191,7 +169,7 @@ int command_draw(int argc, char** argv) {
       // (same vertex set) in the canonical triangulation; the others in grey.
       std::map<Triangle, int> level_of;
       for (auto [t, level] : built) std::sort(t.begin(), t.end()), level_of[t] = level;
-      triangles = read_triangles(simplices_path, table.size());
+      triangles = read_triangles(simplices_path, table);
       std::size_t unmatched = 0;
       for (auto t : triangles) {
         std::sort(t.begin(), t.end());
@@ -205,7 +183,7 @@ int command_draw(int argc, char** argv) {
                      unmatched, triangles.size(), simplices_path.c_str());
     }
   } else {
-    triangles = read_triangles(simplices_path, table.size());
+    triangles = read_triangles(simplices_path, table);
   }
   progress.phase("writing " + output);
   io::write_file_atomically(output, [&](std::ostream& out) {
@@ -219,7 +197,7 @@ namespace {
 const bool registered = register_command({"draw", command_draw,
     "  draw POINTS [SIMPLICES] [-o PICTURE.svg] [--walls] [--width PX] [--quiet]\n"
     "      SVG picture of a 2D triangulation (default: standard output). SIMPLICES is\n"
-    "      a plain simplex list ('-' = standard input). --walls colours each triangle\n"
+    "      a simplex list as certify reads it ('-' = standard input). --walls colours each triangle\n"
     "      by the recursion level of the DeWall wall that built it (0: the first\n"
     "      wall), as in the paper's figures; it triangulates POINTS again to learn\n"
     "      the levels, so SIMPLICES may then be omitted (or '-'); when given, its\n"
