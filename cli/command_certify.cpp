@@ -131,6 +131,8 @@ int command_certify(int argc, char** argv) {
     std::printf("not delaunay: %s is not a Delaunay triangulation of %s: %s\n", sname.c_str(), files[0].c_str(),
                 certify::describe(shifted(*report.first_fatal()), name).c_str());
   }
+  if (!report.delaunay && list.format == "qhull" && report.first_fatal()->rule == certify::Rule::index_out_of_range)
+    std::printf("  (Qhull numbers the centrum points it adds to non-simplicial facets past the input: run qdelaunay with Qt)\n");
   if (options.all) {
     for (const auto& v : report.violations) std::printf("  %s\n", certify::describe(shifted(v), name).c_str());
   } else if (report.delaunay && !report.canonical) {

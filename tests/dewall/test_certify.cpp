@@ -316,6 +316,19 @@ TEST_CASE("certify: correct triangulations accepted, mutants rejected", "[certif
   accept_and_mutate<4>(dewall::test::cospherical<4>(true), "cospherical with centre", rng, false);
 }
 
+TEST_CASE("certify: Qhull on a 2D lattice is Delaunay, not necessarily canonical", "[certify]") {
+  // Qhull resolves cocircular squares its own way (Qt triangulates each merged
+  // facet); the closed-sphere test accepts any of those choices. (On a 3D grid,
+  // `qdelaunay Qt` emits zero-volume tetrahedra, which certify rightly rejects.)
+  const auto p = dewall::test::lattice<2>(100);
+  if (const auto q = qhull_cells<2>(p)) {
+    const auto r = run_certify<2>(p, *q, true);
+    INFO(rules_of<2>(r));
+    CHECK(r.delaunay);
+    CHECK(r.cospherical_facets > 0);
+  }
+}
+
 TEST_CASE("certify: a later duplicate as vertex, and a missing point", "[certify]") {
   std::vector<Point_d<2>> p{{{0, 0}}, {{1, 0}}, {{0, 1}}, {{1, 1}}, {{1, 0}}};
   const Cells<2> t = dewall_cells<2>(p);
