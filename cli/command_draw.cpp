@@ -145,9 +145,10 @@ int command_draw(int argc, char** argv) {
 
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
+  const std::string points_name = points_path == "-" ? "<stdin>" : points_path;
   if (table.dimension != 2)
-    throw std::runtime_error("draw pictures 2D triangulations only; " + points_path + " holds points of dimension " +
-                      std::to_string(table.dimension));
+    throw std::runtime_error("draw pictures 2D triangulations only; " + points_name + " holds points of dimension " +
+                             std::to_string(table.dimension));
 
   std::vector<Triangle> triangles;
   std::vector<int> levels;
@@ -185,7 +186,7 @@ int command_draw(int argc, char** argv) {
   } else {
     triangles = read_triangles(simplices_path, table);
   }
-  progress.phase("writing " + output);
+  if (output != "-") progress.phase("writing " + output);  // no progress line inside the SVG on a terminal
   io::write_file_atomically(output, [&](std::ostream& out) {
     write_svg(out, table, triangles, levels, static_cast<int>(width), walls);
   });

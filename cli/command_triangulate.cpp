@@ -24,9 +24,11 @@ int command_triangulate(int argc, char** argv) {
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
+  const std::string input_name = input == "-" ? "<stdin>" : input;
   if (io::is_vtk_path(output) && table.dimension > 3)
-    throw io::Vtk_unsupported(output + ": VTK output supports 2D and 3D only; " + input + " holds points of dimension " +
-                      std::to_string(table.dimension) + " (write a plain simplex list instead)");
+    throw io::Vtk_unsupported(output + ": VTK output supports 2D and 3D only; " + input_name +
+                              " holds points of dimension " + std::to_string(table.dimension) +
+                              " (write a plain simplex list instead)");
   Run run;
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");

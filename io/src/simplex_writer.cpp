@@ -23,6 +23,12 @@ bool has_extension(const std::string& path, const std::string& ext) {
                     [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
 }
 
+/// No progress line while writing to a terminal's standard output: its carriage
+/// returns would overwrite the very lines being written.
+Progress* unless_terminal_output(const std::string& path, Progress* progress) {
+  return path == "-" && ::isatty(STDOUT_FILENO) == 1 ? nullptr : progress;
+}
+
 }  // namespace
 
 void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress) {
@@ -86,6 +92,7 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress) {
+  progress = unless_terminal_output(path, progress);
   const bool ele = has_extension(path, ".ele");
   if (progress) progress->phase("writing " + (path == "-" ? std::string("<stdout>") : path), ele ? 0 : t.size());
   write_file_atomically(path, [&](std::ostream& out) {
@@ -98,6 +105,7 @@ bool is_vtk_path(const std::string& path) { return has_extension(path, ".vtk"); 
 
 void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
                               Progress* progress) {
+  progress = unless_terminal_output(path, progress);
   if (!is_vtk_path(path)) return write_simplices_file(path, t, points.first_index, progress);
   if (points.dimension != 2 && points.dimension != 3)  // refuse before creating anything
     throw Vtk_unsupported(path + ": VTK output supports 2D and 3D only; these points are in dimension " +
@@ -127,6 +135,7 @@ void write_points_text(std::ostream& out, const Point_table& t, Progress* progre
 }
 
 void write_points_file(const std::string& path, const Point_table& t, Progress* progress) {
+  progress = unless_terminal_output(path, progress);
   const std::string shown = path == "-" ? std::string("<stdout>") : path;
   if (has_extension(path, ".dwpt")) {
     if (progress) progress->phase("writing " + shown, binary_points_file_size(t.size(), t.dimension));
