@@ -80,10 +80,10 @@ TEST_CASE("binary points: bit-exact round trip and the documented layout", "[for
   // Larger than one read chunk (2^20 doubles), through a file and the dispatch
   // on the magic bytes whatever the extension.
   const auto big = generate_points(Point_kind::uniform, 400000, 3, 8);
-  std::filesystem::create_directories("formats_test_tmp");
-  write_points_file("formats_test_tmp/big.txt.dwpt", big);
-  std::filesystem::rename("formats_test_tmp/big.txt.dwpt", "formats_test_tmp/big_binary.txt");
-  CHECK(same_bits(read_points_file("formats_test_tmp/big_binary.txt"), big));
+  std::filesystem::create_directories("formats_test_binary");
+  write_points_file("formats_test_binary/big.txt.dwpt", big);
+  std::filesystem::rename("formats_test_binary/big.txt.dwpt", "formats_test_binary/big_binary.txt");
+  CHECK(same_bits(read_points_file("formats_test_binary/big_binary.txt"), big));
 }
 
 TEST_CASE("binary points: truncated and foreign files are clean errors", "[formats]") {
@@ -207,15 +207,15 @@ TEST_CASE("VTK: points, binary legacy files, errors", "[formats]") {
 }
 
 TEST_CASE("atomic writes leave nothing behind on failure", "[formats]") {
-  std::filesystem::create_directories("formats_test_tmp");
-  const std::string path = "formats_test_tmp/never.out";
+  std::filesystem::create_directories("formats_test_atomic");
+  const std::string path = "formats_test_atomic/never.out";
   std::filesystem::remove(path);
   CHECK_THROWS(write_file_atomically(path, [](std::ostream& out) {
     out << "partial";
     throw std::runtime_error("stop");
   }));
   CHECK(!std::filesystem::exists(path));
-  for (const auto& entry : std::filesystem::directory_iterator("formats_test_tmp"))
+  for (const auto& entry : std::filesystem::directory_iterator("formats_test_atomic"))
     CHECK(entry.path().filename().string().find("never.out.tmp") == std::string::npos);
 }
 
@@ -252,88 +252,95 @@ struct Cli_result {
   std::string out, err;
 };
 
-/// Runs `dewall ARGS` (DEWALL_CLI_PATH, set by CMake) in formats_test_tmp/, with
-/// standard error not a terminal (so no progress line).
-Cli_result dewall_cli(const std::string& args, const std::string& before = "") {
-  const std::string dir = "formats_test_tmp";
-  std::filesystem::create_directories(dir);
-  const std::string cmd = "cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args +
-                          " > out.txt 2> err.txt" + (before.empty() ? " < /dev/null" : "");
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), slurp(dir + "/out.txt"), slurp(dir + "/err.txt")};
-}
+/// Runs `dewall ARGS` (DEWALL_CLI_PATH, set by CMake) in its own directory (ctest
+/// runs test cases in parallel), with standard error not a terminal (so no
+/// progress line). `before` is a shell prefix, e.g. "cat FILE | ".
+struct Cli_in_directory {
+  std::string dir;
+  explicit Cli_in_directory(std::string d) : dir(std::move(d)) { std::filesystem::create_directories(dir); }
+  std::string path(const std::string& name) const { return dir + "/" + name; }
+  Cli_result operator()(const std::string& args, const std::string& before = "") const {
+    const std::string cmd = "cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args +
+                            " > out.txt 2> err.txt" + (before.empty() ? " < /dev/null" : "");
+    const int raw = std::system(cmd.c_str());
+    return {WEXITSTATUS(raw), slurp(path("out.txt")), slurp(path("err.txt"))};
+  }
+};
 
 }  // namespace
 
 TEST_CASE("command line: generate", "[cli][formats]") {
+  const Cli_in_directory cli("formats_test_generate");
   SECTION("seeded runs are identical, and the seed is printed") {
-    const auto a = dewall_cli("generate bubbles 100 --dim 2 --seed 77");
-    const auto b = dewall_cli("generate bubbles 100 --dim 2 --seed 77");
+    const auto a = cli("generate bubbles 100 --dim 2 --seed 77");
+    const auto b = cli("generate bubbles 100 --dim 2 --seed 77");
     CHECK(a.status == 0);
     CHECK(a.out == b.out);
     CHECK(std::count(a.out.begin(), a.out.end(), '\n') == 100);
     CHECK(a.err.find("seed 77") != std::string::npos);
-    const auto random = dewall_cli("generate uniform 10");
+    const auto random = cli("generate uniform 10");
     CHECK(random.status == 0);
     CHECK(random.err.find("seed ") != std::string::npos);
   }
   SECTION("binary output, read back by triangulate, equal to text") {
-    CHECK(dewall_cli("generate lattice-sphere 200 --dim 3 -o ls.dwpt").status == 0);
-    CHECK(dewall_cli("generate lattice-sphere 200 --dim 3 -o ls.txt").status == 0);
-    const auto from_binary = dewall_cli("triangulate ls.dwpt");
-    const auto from_text = dewall_cli("triangulate ls.txt");
+    CHECK(cli("generate lattice-sphere 200 --dim 3 -o ls.dwpt").status == 0);
+    CHECK(cli("generate lattice-sphere 200 --dim 3 -o ls.txt").status == 0);
+    const auto from_binary = cli("triangulate ls.dwpt");
+    const auto from_text = cli("triangulate ls.txt");
     CHECK(from_binary.status == 0);
     CHECK(!from_binary.out.empty());
     CHECK(from_binary.out == from_text.out);
     // A pipe (not seekable) goes through the streaming reader.
-    CHECK(dewall_cli("triangulate -", "cat ls.dwpt | ").out == from_text.out);
+    CHECK(cli("triangulate -", "cat ls.dwpt | ").out == from_text.out);
   }
   SECTION("usage errors exit 2") {
-    CHECK(dewall_cli("generate cube 100").status == 2);
-    CHECK(dewall_cli("generate cube 100").err.find("lattice-sphere") != std::string::npos);
-    CHECK(dewall_cli("generate uniform lots").status == 2);
-    CHECK(dewall_cli("generate uniform 100 --dim 7").status == 2);
-    CHECK(dewall_cli("generate uniform 2 --dim 3").status == 2);
-    CHECK(dewall_cli("generate uniform 100 --seed -4").status == 2);
-    CHECK(dewall_cli("generate uniform").status == 2);
-    CHECK(dewall_cli("generate uniform 100 --dim 4 -o p.vtk").status == 2);
-    CHECK(dewall_cli("generate uniform 1e3 --dim 2 -q").status == 0);
+    CHECK(cli("generate cube 100").status == 2);
+    CHECK(cli("generate cube 100").err.find("lattice-sphere") != std::string::npos);
+    CHECK(cli("generate uniform lots").status == 2);
+    CHECK(cli("generate uniform 100 --dim 7").status == 2);
+    CHECK(cli("generate uniform 2 --dim 3").status == 2);
+    CHECK(cli("generate uniform 100 --seed -4").status == 2);
+    CHECK(cli("generate uniform").status == 2);
+    CHECK(cli("generate uniform 100 --dim 4 -o p.vtk").status == 2);
+    CHECK(cli("generate uniform 1e3 --dim 2 -q").status == 0);
   }
 }
 
 TEST_CASE("command line: triangulate with binary and VTK files", "[cli][formats]") {
-  REQUIRE(dewall_cli("generate ball 300 --dim 3 --seed 5 -o b3.dwpt").status == 0);
+  const Cli_in_directory cli("formats_test_triangulate");
+  REQUIRE(cli("generate ball 300 --dim 3 --seed 5 -o b3.dwpt").status == 0);
   SECTION("VTK out, VTK in: the same triangulation") {
-    CHECK(dewall_cli("triangulate b3.dwpt -o b3.vtk").status == 0);
-    CHECK(slurp("formats_test_tmp/b3.vtk").find("CELL_TYPES") != std::string::npos);
-    CHECK(dewall_cli("triangulate b3.vtk").out == dewall_cli("triangulate b3.dwpt").out);
+    CHECK(cli("triangulate b3.dwpt -o b3.vtk").status == 0);
+    CHECK(slurp(cli.path("b3.vtk")).find("CELL_TYPES") != std::string::npos);
+    CHECK(cli("triangulate b3.vtk").out == cli("triangulate b3.dwpt").out);
   }
   SECTION("VTK in 4D: a clear error and no file") {
-    REQUIRE(dewall_cli("generate uniform 50 --dim 4 --seed 5 -o u4.dwpt").status == 0);
-    std::filesystem::remove("formats_test_tmp/u4.vtk");
-    const auto r = dewall_cli("triangulate u4.dwpt -o u4.vtk");
+    REQUIRE(cli("generate uniform 50 --dim 4 --seed 5 -o u4.dwpt").status == 0);
+    std::filesystem::remove(cli.path("u4.vtk"));
+    const auto r = cli("triangulate u4.dwpt -o u4.vtk");
     CHECK(r.status == 2);
     CHECK(r.err.find("2D and 3D only") != std::string::npos);
-    CHECK(!std::filesystem::exists("formats_test_tmp/u4.vtk"));
+    CHECK(!std::filesystem::exists(cli.path("u4.vtk")));
   }
   SECTION("truncated binary file: exit 2, file named") {
-    const auto bytes = slurp("formats_test_tmp/b3.dwpt");
-    std::ofstream("formats_test_tmp/cut.dwpt", std::ios::binary) << bytes.substr(0, 1000);
-    const auto r = dewall_cli("triangulate cut.dwpt");
+    const auto bytes = slurp(cli.path("b3.dwpt"));
+    std::ofstream(cli.path("cut.dwpt"), std::ios::binary) << bytes.substr(0, 1000);
+    const auto r = cli("triangulate cut.dwpt");
     CHECK(r.status == 2);
     CHECK(r.err.find("cut.dwpt: truncated") != std::string::npos);
-    CHECK(dewall_cli("triangulate -", "cat cut.dwpt | ").status == 2);
+    CHECK(cli("triangulate -", "cat cut.dwpt | ").status == 2);
   }
   SECTION("--quiet and a non-terminal stderr print nothing") {
-    CHECK(dewall_cli("triangulate b3.dwpt -o b3.txt --quiet").err.empty());
-    CHECK(dewall_cli("triangulate b3.dwpt -o b3.txt").err.empty());
+    CHECK(cli("triangulate b3.dwpt -o b3.txt --quiet").err.empty());
+    CHECK(cli("triangulate b3.dwpt -o b3.txt").err.empty());
   }
 }
 
 TEST_CASE("command line: draw", "[cli][formats]") {
-  REQUIRE(dewall_cli("generate bubbles 200 --dim 2 --seed 3 -o p2.txt").status == 0);
-  REQUIRE(dewall_cli("triangulate p2.txt -o s2.txt").status == 0);
-  const auto list = slurp("formats_test_tmp/s2.txt");
+  const Cli_in_directory cli("formats_test_draw");
+  REQUIRE(cli("generate bubbles 200 --dim 2 --seed 3 -o p2.txt").status == 0);
+  REQUIRE(cli("triangulate p2.txt -o s2.txt").status == 0);
+  const auto list = slurp(cli.path("s2.txt"));
   const auto triangles = static_cast<std::size_t>(std::count(list.begin(), list.end(), '\n'));
   auto polygons = [](const std::string& svg) {
     std::size_t n = 0;
@@ -341,28 +348,28 @@ TEST_CASE("command line: draw", "[cli][formats]") {
     return n;
   };
   SECTION("the triangulation") {
-    CHECK(dewall_cli("draw p2.txt s2.txt -o t.svg").status == 0);
-    const auto svg = slurp("formats_test_tmp/t.svg");
+    CHECK(cli("draw p2.txt s2.txt -o t.svg").status == 0);
+    const auto svg = slurp(cli.path("t.svg"));
     CHECK(svg.rfind("<svg", 0) == 0);
     CHECK(polygons(svg) == triangles);
   }
   SECTION("--walls: every triangle coloured by a level, level 0 present") {
-    CHECK(dewall_cli("draw p2.txt --walls -o w.svg").status == 0);
-    const auto svg = slurp("formats_test_tmp/w.svg");
+    CHECK(cli("draw p2.txt --walls -o w.svg").status == 0);
+    const auto svg = slurp(cli.path("w.svg"));
     CHECK(polygons(svg) == triangles);
     CHECK(svg.find("wall level") != std::string::npos);
     CHECK(svg.find("#e15759") != std::string::npos);  // level 0's colour
     CHECK(svg.find("#dddddd") == std::string::npos);  // nothing unmatched
-    CHECK(dewall_cli("draw p2.txt s2.txt --walls -o w2.svg").status == 0);
-    CHECK(slurp("formats_test_tmp/w2.svg") == svg);
+    CHECK(cli("draw p2.txt s2.txt --walls -o w2.svg").status == 0);
+    CHECK(slurp(cli.path("w2.svg")) == svg);
   }
   SECTION("errors") {
-    std::ofstream("formats_test_tmp/bad.txt") << "0 1 2\n0 1 999\n";
-    const auto r = dewall_cli("draw p2.txt bad.txt -o x.svg");
+    std::ofstream(cli.path("bad.txt")) << "0 1 2\n0 1 999\n";
+    const auto r = cli("draw p2.txt bad.txt -o x.svg");
     CHECK(r.status == 2);
     CHECK(r.err.find("bad.txt:2") != std::string::npos);
-    CHECK(dewall_cli("draw p2.txt -o x.svg").status == 2);  // no SIMPLICES, no --walls
-    REQUIRE(dewall_cli("generate uniform 20 --dim 3 -o p3.txt").status == 0);
-    CHECK(dewall_cli("draw p3.txt --walls -o x.svg").status == 2);
+    CHECK(cli("draw p2.txt -o x.svg").status == 2);  // no SIMPLICES, no --walls
+    REQUIRE(cli("generate uniform 20 --dim 3 -o p3.txt").status == 0);
+    CHECK(cli("draw p3.txt --walls -o x.svg").status == 2);
   }
 }
