@@ -51,6 +51,12 @@ struct Tds3_access {
     for (const Vertex_handle& v : w) v->set_cell(c);
     return c;
   }
+  void reserve(std::size_t vertices, std::size_t cells) {
+    if constexpr (requires { tds.cells().reserve(cells); }) {  // not in the concurrent container
+      tds.vertices().reserve(vertices);
+      tds.cells().reserve(cells);
+    }
+  }
   static void set_neighbors(Cell_handle a, int i, Cell_handle b, int j) {
     a->set_neighbor(i, b);
     b->set_neighbor(j, a);

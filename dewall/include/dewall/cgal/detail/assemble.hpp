@@ -91,7 +91,8 @@ std::optional<std::vector<Simplex<D>>> dewall_simplices(const std::vector<kernel
 ///   Vertex_handle infinite_vertex(),
 ///   Vertex_handle create_vertex(std::size_t input_index),
 ///   Cell_handle create_cell(const std::array<Vertex_handle, D + 1>&)   (also sets each vertex's cell),
-///   void set_neighbors(Cell_handle a, int i, Cell_handle b, int j)     (both directions).
+///   void set_neighbors(Cell_handle a, int i, Cell_handle b, int j)     (both directions),
+///   optionally void reserve(std::size_t vertices, std::size_t cells).
 /// Vertices are created in input order for the input points used by some
 /// simplex (the first occurrence of each distinct point, DeWall's convention),
 /// then the finite cells in DeWall's order with DeWall's (positive)
@@ -113,6 +114,11 @@ void assemble(const std::vector<Simplex<D>>& simplices, std::size_t input_size, 
   using Vertex_handle = typename Access::Vertex_handle;
   using Cell_handle = typename Access::Cell_handle;
   constexpr std::uint32_t infinite_id = std::numeric_limits<std::uint32_t>::max();
+
+  // One allocation for the storage of the cells and vertices where the TDS
+  // allows it (Compact_container::reserve) instead of many growing blocks.
+  if constexpr (requires { tds.reserve(std::size_t{}, std::size_t{}); })
+    tds.reserve(input_size + 1, simplices.size() + simplices.size() / 8);
 
   std::vector<Vertex_handle> vertex(input_size);
   {
