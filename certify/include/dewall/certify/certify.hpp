@@ -64,7 +64,6 @@
 
 #include "dewall/certify/face_grouping.hpp"
 #include "dewall/certify/report.hpp"
-#include "dewall/certify/unperturbed_side_of_sphere.hpp"
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
 
@@ -241,7 +240,7 @@ class Certifier {
       const Cell_points p = at(c1);
       std::copy(p.begin(), p.end(), s.begin());
       s[D + 1] = &points_[b];
-      const kernel::Oriented_side side = unperturbed_side_of_sphere<K>(k_, s);
+      const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
       const auto witness = [&](Rule rule) {
         return Violation{.rule = rule, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row],
                          .face = facet_of(c1, i1), .point = b};
@@ -353,11 +352,8 @@ class Certifier {
 /// and dewall compute). Duplicate points: the first occurrence must be the
 /// vertex, later copies must not appear. See the file comment for the checks
 /// and why they suffice.
-/// \pre K decides the unperturbed sphere sign (unperturbed_side_of_sphere.hpp);
-/// Filtered_kernel_d<D> does.
 /// Complexity: O(n log n + m·D²) predicates and bookkeeping, n points, m simplices.
 template <kernel::DelaunayKernel K>
-  requires detail::has_unperturbed_sphere<K>
 Report certify(std::span<const typename K::Point_d> points,
                std::span<const Simplex_indices<K::dimension>> simplices, const Options& options = {},
                const K& k = {}) {
@@ -366,7 +362,6 @@ Report certify(std::span<const typename K::Point_d> points,
 
 /// Convenience form for vectors.
 template <kernel::DelaunayKernel K>
-  requires detail::has_unperturbed_sphere<K>
 Report certify(const std::vector<typename K::Point_d>& points,
                const std::vector<Simplex_indices<K::dimension>>& simplices, const Options& options = {},
                const K& k = {}) {

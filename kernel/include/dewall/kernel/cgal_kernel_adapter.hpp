@@ -81,21 +81,27 @@ class Cgal_kernel_adapter {
     }
   };
 
-  struct Side_of_oriented_sphere_d {
+  struct Side_of_oriented_sphere_unperturbed_d {
     CK kernel;
     Oriented_side operator()(const std::array<const Point_d*, D + 2>& s) const {
-      Oriented_side side;
       if constexpr (is_d_kernel) {
         std::array<Point_d, D + 1> pts;
         for (int i = 0; i <= D; ++i) pts[static_cast<std::size_t>(i)] = *s[static_cast<std::size_t>(i)];
-        side = static_cast<Oriented_side>(
+        return static_cast<Oriented_side>(
             kernel.side_of_oriented_sphere_d_object()(pts.begin(), pts.end(), *s[D + 1]));
       } else if constexpr (D == 2) {
-        side = static_cast<Oriented_side>(kernel.side_of_oriented_circle_2_object()(*s[0], *s[1], *s[2], *s[3]));
+        return static_cast<Oriented_side>(kernel.side_of_oriented_circle_2_object()(*s[0], *s[1], *s[2], *s[3]));
       } else {
-        side = static_cast<Oriented_side>(
+        return static_cast<Oriented_side>(
             kernel.side_of_oriented_sphere_3_object()(*s[0], *s[1], *s[2], *s[3], *s[4]));
       }
+    }
+  };
+
+  struct Side_of_oriented_sphere_d {
+    CK kernel;
+    Oriented_side operator()(const std::array<const Point_d*, D + 2>& s) const {
+      const Oriented_side side = Side_of_oriented_sphere_unperturbed_d{kernel}(s);
       if (side != ON_ORIENTED_BOUNDARY) return side;
       const Compare_lexicographically_d compare{kernel};
       return perturbed_side_of_sphere<D>(s, Orientation_d{kernel},
@@ -113,6 +119,7 @@ class Cgal_kernel_adapter {
 
   Orientation_d orientation_d_object() const { return {}; }
   Side_of_oriented_sphere_d side_of_oriented_sphere_d_object() const { return {}; }
+  Side_of_oriented_sphere_unperturbed_d side_of_oriented_sphere_unperturbed_d_object() const { return {}; }
   Compare_lexicographically_d compare_lexicographically_d_object() const { return {}; }
   Approximate_coordinates_d approximate_coordinates_object() const { return {}; }
 };

@@ -17,6 +17,9 @@
 //      case by CGAL's lexicographic symbolic perturbation; never
 //      ON_ORIENTED_BOUNDARY. \pre the simplex is positively oriented and q is
 //      not one of its vertices.
+//  * `side_of_oriented_sphere_unperturbed_d_object()(s)`: the same test without
+//      the perturbation: ON_ORIENTED_BOUNDARY when q is on the sphere. Exact.
+//      (The certifier needs it to tell "Delaunay" from "canonical".)
 //  * `compare_lexicographically_d_object()(p, q)`: the exact lexicographic
 //      order of the coordinates (the order the perturbation is defined on).
 //  * `approximate_coordinates_object()(p)`: the coordinates as
@@ -45,6 +48,7 @@ concept DelaunayKernel =
              const std::array<const typename K::Point_d*, K::dimension + 2>& simplex_and_query) {
       { k.orientation_d_object()(simplex) } -> std::same_as<Sign>;
       { k.side_of_oriented_sphere_d_object()(simplex_and_query) } -> std::same_as<Oriented_side>;
+      { k.side_of_oriented_sphere_unperturbed_d_object()(simplex_and_query) } -> std::same_as<Oriented_side>;
       { k.compare_lexicographically_d_object()(p, p) } -> std::same_as<Comparison_result>;
       { k.approximate_coordinates_object()(p) } -> std::convertible_to<std::array<double, K::dimension>>;
     };

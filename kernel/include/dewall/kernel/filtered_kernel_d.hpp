@@ -23,6 +23,11 @@ struct Filtered_kernel_d {
       return side_of_oriented_sphere_d_sos<D>(s);
     }
   };
+  struct Side_of_oriented_sphere_unperturbed_d {
+    Oriented_side operator()(const std::array<const Point_d*, D + 2>& s) const {
+      return side_of_oriented_sphere_d<D>(s);
+    }
+  };
   struct Compare_lexicographically_d {
     Comparison_result operator()(const Point_d& a, const Point_d& b) const {
       return compare_lexicographically(a, b);
@@ -34,6 +39,7 @@ struct Filtered_kernel_d {
 
   Orientation_d orientation_d_object() const { return {}; }
   Side_of_oriented_sphere_d side_of_oriented_sphere_d_object() const { return {}; }
+  Side_of_oriented_sphere_unperturbed_d side_of_oriented_sphere_unperturbed_d_object() const { return {}; }
   Compare_lexicographically_d compare_lexicographically_d_object() const { return {}; }
   Approximate_coordinates_d approximate_coordinates_object() const { return {}; }
 };

@@ -11,6 +11,7 @@
 #pragma once
 
 #include "dewall/kernel/filtered_predicate.hpp"
+#include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/perturbation.hpp"
 
 namespace dewall::kernel {
