@@ -10,6 +10,8 @@
 
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
+#include "dewall/certify/report.hpp"
+#include "dewall/kernel/point.hpp"
 #include "dewall/options.hpp"
 
 namespace dewall::cli {
@@ -34,6 +36,20 @@ struct Run {
 /// Triangulates a point table of any supported dimension.
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
 Run triangulate_any(const io::Point_table& table);
+
+/// The points of a table as kernel points. \pre table.dimension == D.
+template <int D>
+std::vector<kernel::Point_d<D>> kernel_points(const io::Point_table& table) {
+  std::vector<kernel::Point_d<D>> points(table.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
+  return points;
+}
+
+/// Certifies `simplices` against `points` (any supported dimension) with the
+/// project's kernel. \throws Usage_error for an unsupported dimension.
+certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
+                            const certify::Options& options);
 
 /// Prints the paper's Table 1 counters and build_s=SECONDS.
 void print_stats(std::FILE* out, const Run& run);

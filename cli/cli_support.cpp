@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 
 namespace dewall::cli {
@@ -11,9 +12,7 @@ namespace {
 
 template <int D>
 Run triangulate_table(const io::Point_table& table) {
-  std::vector<kernel::Point_d<D>> points(table.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
+  const auto points = kernel_points<D>(table);
   Run run;
   run.simplices.vertices_per_simplex = D + 1;
   const auto start = std::chrono::steady_clock::now();
@@ -24,7 +23,28 @@ Run triangulate_table(const io::Point_table& table) {
   return run;
 }
 
+template <int D>
+certify::Report certify_table(const io::Point_table& points, const io::Simplex_table& table,
+                              const certify::Options& options) {
+  std::vector<certify::Simplex_indices<D>> s(table.size());
+  for (std::size_t r = 0; r < s.size(); ++r)
+    for (int j = 0; j <= D; ++j) s[r][static_cast<std::size_t>(j)] = table.indices[r * (D + 1) + static_cast<std::size_t>(j)];
+  return certify::certify<kernel::Filtered_kernel_d<D>>(kernel_points<D>(points), s, options);
+}
+
 }  // namespace
+
+certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
+                            const certify::Options& options) {
+  switch (points.dimension) {
+    case 2: return certify_table<2>(points, simplices, options);
+    case 3: return certify_table<3>(points, simplices, options);
+    case 4: return certify_table<4>(points, simplices, options);
+    case 5: return certify_table<5>(points, simplices, options);
+    case 6: return certify_table<6>(points, simplices, options);
+  }
+  throw Usage_error("dimension " + std::to_string(points.dimension) + " is not supported (2 to 6)");
+}
 
 Run triangulate_any(const io::Point_table& table) {
   switch (table.dimension) {

@@ -12,29 +12,6 @@
 namespace dewall::cli {
 namespace {
 
-template <int D>
-certify::Report certify_table(const io::Point_table& points, const io::Simplex_list& list, const certify::Options& o) {
-  std::vector<kernel::Point_d<D>> p(points.size());
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (int j = 0; j < D; ++j) p[i][j] = points.coordinates[i * D + static_cast<std::size_t>(j)];
-  std::vector<certify::Simplex_indices<D>> s(list.table.size());
-  for (std::size_t r = 0; r < s.size(); ++r)
-    for (int j = 0; j <= D; ++j) s[r][static_cast<std::size_t>(j)] = list.table.indices[r * (D + 1) + static_cast<std::size_t>(j)];
-  return certify::certify<kernel::Filtered_kernel_d<D>>(p, s, o);
-}
-
-/// The dimension dispatch: certify a point table of any supported dimension.
-certify::Report certify_any(const io::Point_table& points, const io::Simplex_list& list, const certify::Options& o) {
-  switch (points.dimension) {
-    case 2: return certify_table<2>(points, list, o);
-    case 3: return certify_table<3>(points, list, o);
-    case 4: return certify_table<4>(points, list, o);
-    case 5: return certify_table<5>(points, list, o);
-    case 6: return certify_table<6>(points, list, o);
-  }
-  throw Usage_error("dimension " + std::to_string(points.dimension) + " is not supported (2 to 6)");
-}
-
 std::string json_string(const std::string& s) {
   std::string out = "\"";
   for (char c : s) {
@@ -67,7 +44,7 @@ int command_certify(int argc, char** argv) {
   const std::string& sname = files[1] == "-" ? std::string("<stdin>") : files[1];
 
   const auto start = std::chrono::steady_clock::now();
-  const certify::Report report = certify_any(points, list, options);
+  const certify::Report report = certify_any(points, list.table, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   // Witnesses name input numbers as the files do (TetGen may count from 1).

@@ -1,30 +1,35 @@
-// dewall demo [--points N] [--dim D] [--seed S]
+// dewall demo [--kind KIND] [--points N] [--dim D] [--seed S]: the default job of
+// ./run: generate a point set, triangulate it, certify the result, summarize.
+#include <chrono>
 #include <cstdio>
 #include <random>
 
 #include "cli.hpp"
+#include "dewall/certify/certify.hpp"
 #include "dewall/error.hpp"
+#include "dewall/io/point_generators.hpp"
 
 namespace dewall::cli {
 
 int command_demo(int argc, char** argv) {
   long n = 100000, dim = 3;
+  io::Point_kind kind = io::Point_kind::uniform;
   unsigned long long seed = std::random_device{}();
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
     else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
     else if (a == "--seed") seed = static_cast<unsigned long long>(parse_long(next_arg(i, argc, argv), "seed"));
-    else throw Usage_error("unknown option '" + a + "'");
+    else if (a == "--kind") {
+      const std::string name = next_arg(i, argc, argv);
+      const auto k = io::parse_point_kind(name);
+      if (!k) throw Usage_error("unknown kind '" + name + "' (" + io::point_kind_names() + ")");
+      kind = *k;
+    } else throw Usage_error("unknown option '" + a + "'");
   }
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
-  std::printf("dewall demo: %ld uniform random points in the unit cube of E^%ld, seed %llu\n", n, dim, seed);
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uniform(0.0, 1.0);
-  io::Point_table table;
-  table.dimension = static_cast<int>(dim);
-  table.coordinates.resize(static_cast<std::size_t>(n * dim));
-  for (double& c : table.coordinates) c = uniform(rng);
+  std::printf("dewall demo: %ld %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim, seed);
+  const io::Point_table table = io::generate_points(kind, static_cast<std::size_t>(n), static_cast<int>(dim), seed);
   Run run;
   try {
     run = triangulate_any(table);
@@ -35,15 +40,25 @@ int command_demo(int argc, char** argv) {
   print_stats(stdout, run);
   std::printf("triangulated %zu points into %zu simplices in %.3f s\n", run.stats.distinct_points,
               run.stats.simplices, run.seconds);
-  return 0;
+  const auto start = std::chrono::steady_clock::now();
+  const certify::Report report = certify_any(table, run.simplices, {});
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (const auto* v = report.first_fatal()) {
+    std::printf("certify: NOT a Delaunay triangulation: %s\n", certify::describe(*v).c_str());
+    return 1;
+  }
+  std::printf("certify: %s Delaunay triangulation (checked exactly in %.3f s)\n",
+              report.canonical ? "the canonical (CGAL's, perturbed)" : "a non-canonical", seconds);
+  return report.canonical ? 0 : 1;
 }
-
 
 namespace {
 const bool registered = register_command({"demo", command_demo,
-    "  demo [--points N] [--dim D] [--seed S]\n"
-    "      Generates N uniform random points in the unit cube of E^D (default\n"
-    "      100000 points, D = 3), triangulates them and prints a summary.\n"});
+    "  demo [--kind KIND] [--points N] [--dim D] [--seed S]\n"
+    "      Generates N points (default 100000 uniform points in the unit cube of\n"
+    "      E^3; KIND as for generate), triangulates them, certifies the result with\n"
+    "      the independent exact checker and prints a summary. ./run with no\n"
+    "      arguments runs this.\n"});
 }  // namespace
 
 }  // namespace dewall::cli
