@@ -46,8 +46,10 @@ using Point_refs = std::array<const Point_d<D>*, N>;
 /// Stage 1: the determinant in double, accepted when it exceeds the proven
 /// bound ε·Π_j M̂_j (error_bounds.hpp). Returns nothing when undecided or when
 /// the column maxima leave the filter's domain.
+/// `computed` (optional) receives the double determinant when the filter got that far.
 template <class Recipe, int D>
-[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p) {
+[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p,
+                                                         double* computed = nullptr) {
   constexpr int K = Recipe::size;
   const auto m = Recipe::template matrix<double>(
       [&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
@@ -66,6 +68,7 @@ template <class Recipe, int D>
     bound *= column_max;
   }
   const double det = determinant<double, K>(m);
+  if (computed) *computed = det;
   if (det > bound) return Recipe::sign_adjust;
   if (det < -bound) return -Recipe::sign_adjust;
   return std::nullopt;
@@ -133,13 +136,20 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 template <class Recipe, int D>
 Sign filtered(const Point_refs<D, Recipe::arity>& p) {
   auto& stats = Recipe::stats();
-  if (auto s = filter<Recipe, D>(p)) {
+  double computed = 1;
+  if (auto s = filter<Recipe, D>(p, &computed)) {
     count(stats.filter);
     return *s;
   }
-  if (auto s = interval<Recipe, D>(p)) {
-    count(stats.interval);
-    return *s;
+  // A double determinant of exactly 0 almost always means an exactly degenerate
+  // input (lattices: small integers compute without rounding), which intervals
+  // cannot decide: go straight to the exact stage. Skipping a stage never
+  // changes an answer, only its cost.
+  if (computed != 0) {
+    if (auto s = interval<Recipe, D>(p)) {
+      count(stats.interval);
+      return *s;
+    }
   }
   count(stats.exact);
   return exact<Recipe, D>(p);
