@@ -69,6 +69,7 @@ Simplex_set<D> cgal_delaunay(const std::vector<kernel::Point_d<D>>& points) {
     std::vector<typename K::Point_d> p;
     for (const auto& q : points) p.emplace_back(q.x.begin(), q.x.end());
     dt.insert(p.begin(), p.end());
+    if (dt.current_dimension() < D) return out;  // not full-dimensional: no D-simplices
     for (auto c = dt.finite_full_cells_begin(); c != dt.finite_full_cells_end(); ++c)
       add([&](int i) {
         const auto& v = c->vertex(i)->point();
