@@ -21,6 +21,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include <algorithm>
 #include <mutex>
 #include <span>
 #include <vector>
@@ -69,7 +70,24 @@ class Wall_builder {
     if (!top && afl.empty()) return;
     stats.max_depth = std::max(stats.max_depth, depth);
     std::size_t side1_size = 0;
-    const auto split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
+    auto split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
+    // A simplex found for a face of this region may have a vertex outside it (the
+    // search is global; fuzz finding 165dddcd: a region {3, 4} whose face got
+    // apex 2 from the sibling region), so a region's faces can outlive its
+    // points. When the points alone cannot be split, split them together with
+    // the faces' vertices: any split is correct, Update still closes each face once.
+    std::vector<Index> extended;
+    if (!split) {
+      std::vector<Face<D>> faces;
+      while (!afl.empty()) faces.push_back(afl.pop());
+      extended.assign(points.begin(), points.end());
+      for (const auto& f : faces) extended.insert(extended.end(), f.begin(), f.end());
+      std::sort(extended.begin(), extended.end());
+      extended.erase(std::unique(extended.begin(), extended.end()), extended.end());
+      for (const auto& f : faces) afl.update(f);
+      points = std::span<Index>(extended);
+      split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
+    }
     DEWALL_ASSERT(split.has_value());  // faces need two distinct points
     Active_face_list<D> wall, afl1, afl2;
     auto classify = [&](const Face<D>& f) -> Active_face_list<D>& {
