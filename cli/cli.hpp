@@ -37,6 +37,11 @@ struct Run {
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
 Run triangulate_any(const io::Point_table& table);
 
+/// The same with CGAL's own incremental construction (cli/engine_cgal.cpp):
+/// the same input checks, simplices positively oriented; only the counters
+/// input_points, distinct_points and simplices are set.
+Run triangulate_any_with_cgal(const io::Point_table& table);
+
 /// The points of a table as kernel points. \pre table.dimension == D.
 template <int D>
 std::vector<kernel::Point_d<D>> kernel_points(const io::Point_table& table) {

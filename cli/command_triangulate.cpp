@@ -1,4 +1,4 @@
-// dewall triangulate INPUT [-o OUTPUT] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine dewall|cgal] [--stats] [--quiet]
 #include <cstdio>
 
 #include "cli.hpp"
@@ -10,10 +10,12 @@ namespace dewall::cli {
 
 int command_triangulate(int argc, char** argv) {
   std::string input, output = "-";
+  std::string engine = "dewall";
   bool stats = false, quiet = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+    else if (a == "--engine") engine = next_arg(i, argc, argv);
     else if (a == "--stats") stats = true;
     else if (a == "--quiet" || a == "-q") quiet = true;
     else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
@@ -21,6 +23,7 @@ int command_triangulate(int argc, char** argv) {
     else throw Usage_error("unexpected argument '" + a + "'");
   }
   if (input.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
+  if (engine != "dewall" && engine != "cgal") throw Usage_error("unknown engine '" + engine + "' (dewall or cgal)");
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
@@ -32,7 +35,7 @@ int command_triangulate(int argc, char** argv) {
   Run run;
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");
-    run = triangulate_any(table);
+    run = engine == "cgal" ? triangulate_any_with_cgal(table) : triangulate_any(table);
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();
@@ -52,7 +55,7 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--stats] [--quiet]\n"
+    "  triangulate INPUT [-o OUTPUT] [--engine dewall|cgal] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -60,6 +63,8 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, legacy\n"
     "      VTK for ParaView when it ends in .vtk (2D and 3D).\n"
+    "      --engine cgal triangulates with CGAL's own incremental construction\n"
+    "      instead (same output format and input checks), to compare with.\n"
     "      --stats prints the paper's Table 1 counters and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"
     "      --quiet turns it off.\n"});

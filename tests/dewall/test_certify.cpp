@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -22,6 +23,7 @@
 #include "dewall/io/simplex_reader.hpp"
 #include "dewall_point_sets.hpp"
 #include "support/cgal_reference.hpp"
+#include "support/cli_runner.hpp"
 
 using dewall::kernel::Point_d;
 namespace certify = dewall::certify;
@@ -470,30 +472,14 @@ TEST_CASE("simplex reader: plain, Qhull and TetGen .ele, with errors", "[certify
 
 namespace {
 
-struct Cli_result {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-Cli_result run_cli(const std::string& args) {
-  const std::string dir = "certify_cli_tmp";
-  const std::string cmd = std::string(DEWALL_CLI_PATH) + " " + args + " > " + dir + "/out.txt 2> " + dir + "/err.txt";
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), slurp(dir + "/out.txt"), slurp(dir + "/err.txt")};
-}
-
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
 }  // namespace
 
 TEST_CASE("command line: certify", "[certify][cli]") {
-  const std::string d = "certify_cli_tmp/";
-  std::system("mkdir -p certify_cli_tmp");
+  const dewall::test::Cli_in_directory cli("certify_cli_tmp");
+  const auto run_cli = [&](const std::string& args) { return cli(args); };
+  const std::string d = std::filesystem::absolute(cli.dir).string() + "/";
   // The 3×3 lattice square: canonical diagonals are dewall's.
   write(d + "grid.txt", "0 0\n1 0\n2 0\n0 1\n1 1\n2 1\n0 2\n1 2\n2 2\n");
   REQUIRE(run_cli("triangulate " + d + "grid.txt -o " + d + "grid.tri").status == 0);
@@ -526,7 +512,7 @@ TEST_CASE("command line: certify", "[certify][cli]") {
     CHECK(r.out.find("\"rule\":\"not_canonical\"") != std::string::npos);
   }
   SECTION("broken: exit 1 with the first violation and its line; --all lists more") {
-    std::string tri = slurp(d + "grid.tri");
+    std::string tri = dewall::test::slurp(d + "grid.tri");
     write(d + "broken.tri", "# first line is a comment\n" + tri.substr(tri.find('\n') + 1) + "0 4 8\n");
     auto r = run_cli("certify " + d + "grid.txt " + d + "broken.tri");
     CHECK(r.status == 1);

@@ -25,6 +25,7 @@
 #include "dewall/io/progress.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/io/vtk.hpp"
+#include "support/cli_runner.hpp"
 
 using namespace dewall::io;
 
@@ -57,10 +58,7 @@ Point_table read_binary_string(const std::string& bytes) {
   return read_binary_points(in, "test.dwpt");
 }
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+using dewall::test::slurp;
 
 }  // namespace
 
@@ -245,29 +243,7 @@ TEST_CASE("progress: silent when disabled, a line per phase when shown", "[forma
   CHECK(text.back() == '\n');
 }
 
-namespace {
-
-struct Cli_result {
-  int status;
-  std::string out, err;
-};
-
-/// Runs `dewall ARGS` (DEWALL_CLI_PATH, set by CMake) in its own directory (ctest
-/// runs test cases in parallel), with standard error not a terminal (so no
-/// progress line). `before` is a shell prefix, e.g. "cat FILE | ".
-struct Cli_in_directory {
-  std::string dir;
-  explicit Cli_in_directory(std::string d) : dir(std::move(d)) { std::filesystem::create_directories(dir); }
-  std::string path(const std::string& name) const { return dir + "/" + name; }
-  Cli_result operator()(const std::string& args, const std::string& before = "") const {
-    const std::string cmd = "cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args +
-                            " > out.txt 2> err.txt" + (before.empty() ? " < /dev/null" : "");
-    const int raw = std::system(cmd.c_str());
-    return {WEXITSTATUS(raw), slurp(path("out.txt")), slurp(path("err.txt"))};
-  }
-};
-
-}  // namespace
+using dewall::test::Cli_in_directory;
 
 TEST_CASE("command line: generate", "[cli][formats]") {
   const Cli_in_directory cli("formats_test_generate");

@@ -8,10 +8,14 @@
 #include <limits>
 #include <map>
 #include <random>
+#include <set>
+#include <sstream>
 #include <string>
 
 #include "dewall/dewall.hpp"
 #include "dewall_point_sets.hpp"
+#include "support/cgal_reference.hpp"
+#include "support/cli_runner.hpp"
 
 using namespace dewall;
 using dewall::kernel::Point_d;
@@ -106,33 +110,11 @@ TEST_CASE("bad input through the library", "[errors]") {
   SECTION("no points") { CHECK_THROWS_AS(dewall::triangulate<2>(std::vector<Point_d<2>>{}), Invalid_input); }
 }
 
-namespace {
-
-struct Cli_result {
-  int status;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-/// Runs the dewall CLI built with the tests (DEWALL_CLI_PATH, set by CMake).
-Cli_result run_cli(const std::string& args, const std::string& input_text = "") {
-  const char* cli = DEWALL_CLI_PATH;
-  const std::string dir = "cli_test_tmp";
-  std::system(("mkdir -p " + dir).c_str());
-  std::ofstream(dir + "/stdin.txt") << input_text;
-  const std::string cmd = std::string(cli) + " " + args + " < " + dir + "/stdin.txt > " + dir + "/out.txt 2> " + dir +
-                          "/err.txt";
-  const int raw = std::system(cmd.c_str());
-  return {WEXITSTATUS(raw), slurp(dir + "/out.txt"), slurp(dir + "/err.txt")};
-}
-
-}  // namespace
-
 TEST_CASE("command line: triangulate and its errors", "[cli]") {
+  const dewall::test::Cli_in_directory cli("cli_test_triangulate");
+  const auto run_cli = [&](const std::string& args, const std::string& input_text = "") {
+    return cli.with_stdin(args, input_text);
+  };
   SECTION("a square from standard input, with --stats") {
     const auto r = run_cli("triangulate - --stats", "# unit square\n0 0\n1 0\n0 1\n1 1\n");
     CHECK(r.status == 0);
@@ -166,11 +148,11 @@ TEST_CASE("command line: triangulate and its errors", "[cli]") {
     CHECK(r.err.find("point 2") != std::string::npos);
   }
   SECTION("collinear points, and no partial output file") {
-    std::remove("cli_test_tmp/never.txt");
-    const auto r = run_cli("triangulate - -o cli_test_tmp/never.txt", "0 0\n1 1\n2 2\n3 3\n");
+    std::remove(cli.path("never.txt").c_str());
+    const auto r = run_cli("triangulate - -o never.txt", "0 0\n1 1\n2 2\n3 3\n");
     CHECK(r.status == 1);
     CHECK(r.err.find("collinear") != std::string::npos);
-    CHECK(!std::ifstream("cli_test_tmp/never.txt").good());
+    CHECK(!std::ifstream(cli.path("never.txt")).good());
   }
   SECTION("missing file") {
     const auto r = run_cli("triangulate /nonexistent/points.txt");
@@ -178,4 +160,68 @@ TEST_CASE("command line: triangulate and its errors", "[cli]") {
     CHECK(r.err.find("cannot open") != std::string::npos);
   }
   SECTION("unknown command") { CHECK(run_cli("frobnicate").status == 2); }
+}
+
+namespace {
+
+/// A simplex list as the CLI writes it, as sorted index tuples.
+template <int D>
+std::set<std::array<std::uint32_t, D + 1>> simplex_set(const std::string& text) {
+  std::set<std::array<std::uint32_t, D + 1>> s;
+  std::istringstream in(text);
+  std::array<std::uint32_t, D + 1> t;
+  while (in >> t[0]) {
+    for (int i = 1; i <= D; ++i) in >> t[static_cast<std::size_t>(i)];
+    std::sort(t.begin(), t.end());
+    s.insert(t);
+  }
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
+  const dewall::test::Cli_in_directory cli("cli_test_engine");
+  SECTION("CGAL's triangulation, equal to DeWall's, positively oriented, on cospherical points with duplicates") {
+    // The 3D integer points of norm^2 = 9 (cospherical), the centre, and a
+    // later duplicate of each: every sphere test a tie, decided by the
+    // perturbation, and duplicates mapped to their first occurrence.
+    std::vector<Point_d<3>> p{{{0, 0, 0}}};
+    for (int x = -3; x <= 3; ++x)
+      for (int y = -3; y <= 3; ++y)
+        for (int z = -3; z <= 3; ++z)
+          if (x * x + y * y + z * z == 9) p.push_back({{double(x), double(y), double(z)}});
+    const std::size_t distinct = p.size();
+    for (std::size_t i = 0; i < distinct; i += 2) p.push_back(p[i]);
+    std::string text;
+    for (const auto& q : p) text += std::to_string(q[0]) + " " + std::to_string(q[1]) + " " + std::to_string(q[2]) + "\n";
+    const auto by_cgal = cli.with_stdin("triangulate - --engine cgal", text);
+    const auto by_dewall = cli.with_stdin("triangulate - --engine dewall", text);
+    REQUIRE(by_cgal.status == 0);
+    REQUIRE(by_dewall.status == 0);
+    const auto cells = simplex_set<3>(by_cgal.out);
+    CHECK(!cells.empty());
+    CHECK(cells == simplex_set<3>(by_dewall.out));
+    CHECK(cells == dewall::test::as_set<3>(dewall::test::cgal_delaunay<3>(p)));
+    std::istringstream rows(by_cgal.out);
+    std::array<std::uint32_t, 4> t;
+    while (rows >> t[0] >> t[1] >> t[2] >> t[3]) {
+      std::array<const Point_d<3>*, 4> s{&p[t[0]], &p[t[1]], &p[t[2]], &p[t[3]]};
+      CHECK(kernel::orientation_d<3>(s) == kernel::POSITIVE);
+      for (auto i : t) CHECK(i < distinct);
+    }
+  }
+  SECTION("the same input errors as DeWall's") {
+    auto r = cli.with_stdin("triangulate - --engine cgal", "0 0\n1 0\nnan 1\n1 1\n");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("point 2") != std::string::npos);
+    r = cli.with_stdin("triangulate - --engine cgal", "0 0\n1 1\n2 2\n3 3\n");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("collinear") != std::string::npos);
+    r = cli.with_stdin("triangulate - --engine cgal", "0 0\n1 0\n0 0\n");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("at least 3 distinct points") != std::string::npos);
+    CHECK(cli.with_stdin("triangulate - --engine qhull", "0 0\n1 0\n0 1\n").status == 2);
+    CHECK(cli.with_stdin("triangulate - --engine", "0 0\n1 0\n0 1\n").status == 2);
+  }
 }

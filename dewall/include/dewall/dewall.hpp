@@ -51,13 +51,9 @@ template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {
   constexpr int D = K::dimension;
-  if (points.size() >= (std::size_t{1} << 32) - 1) throw Invalid_input("too many points (at most 2^32 - 2)");
   const std::vector<std::size_t> input = detail::distinct_points<K>(k, points);
   std::vector<const typename K::Point_d*> refs(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
-  if (input.size() < static_cast<std::size_t>(D + 1))
-    throw Invalid_input("need at least " + std::to_string(D + 1) + " distinct points in dimension " +
-                        std::to_string(D) + ", got " + std::to_string(input.size()));
   const detail::Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
   detail::require_full_dimension<D>(ps.coords_for_checks());
 

@@ -111,6 +111,10 @@ DT make_delaunay_triangulation_d(InputIterator first, InputIterator last, const 
                                  const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
   const std::vector<typename DT::Point> points(first, last);
   DT dt(detail::static_dimension<DT>(), traits);
+  // CGAL 5.5's dD range insert dereferences begin() of an empty range inside
+  // spatial_sort (UBSan: reference binding to null): an empty input is an
+  // empty triangulation without asking CGAL.
+  if (points.empty()) return dt;
   if (!detail::build_with_dewall_d(dt, points, options)) dt.insert(points.begin(), points.end());
   return dt;
 }

@@ -21,10 +21,13 @@
 namespace dewall::detail {
 
 /// Input indices of the distinct points, each the first occurrence of its
-/// coordinates, in input order. Throws Invalid_input on non-finite coordinates.
+/// coordinates, in input order. Throws Invalid_input on more than 2^32 - 2
+/// points (indices are 32-bit), non-finite coordinates, or fewer than D + 1
+/// distinct points.
 template <class K>
 std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K::Point_d> points) {
   constexpr int D = K::dimension;
+  if (points.size() >= (std::size_t{1} << 32) - 1) throw Invalid_input("too many points (at most 2^32 - 2)");
   const auto coords = k.approximate_coordinates_object();
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto x = coords(points[i]);
@@ -42,6 +45,9 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
   for (std::size_t i = 0; i < order.size(); ++i)
     if (i == 0 || compare(points[order[i - 1]], points[order[i]]) != kernel::EQUAL) kept.push_back(order[i]);
   std::sort(kept.begin(), kept.end());
+  if (kept.size() < static_cast<std::size_t>(D + 1))
+    throw Invalid_input("need at least " + std::to_string(D + 1) + " distinct points in dimension " +
+                        std::to_string(D) + ", got " + std::to_string(kept.size()));
   return kept;
 }
 
