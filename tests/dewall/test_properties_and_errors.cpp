@@ -225,3 +225,27 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
     CHECK(cli.with_stdin("triangulate - --engine", "0 0\n1 0\n0 1\n").status == 2);
   }
 }
+
+TEMPLATE_TEST_CASE_SIG("far from 1: scaling the input by 2^±600 changes nothing, not even the work done", "[dewall][scale]",
+                       ((int D), D), 2, 3, 4) {
+  // DeWall's own double arithmetic (grid, rings, ball boxes, filters) runs on
+  // coordinates scaled exactly to near 1, and the kernel's filter scales too:
+  // the same simplices, and the same counters, as the unscaled input. Before,
+  // a 4D lattice scaled by 2^600 collapsed the grid to one cell and every
+  // predicate went to the exact stage (minutes instead of milliseconds).
+  std::mt19937_64 rng(20261122);
+  for (const auto& base : {dewall::test::lattice<D>(D == 4 ? 300 : 500), dewall::test::uniform<D>(400, rng)}) {
+    const auto reference = dewall::triangulate<D>(base);
+    for (const double factor : {0x1p600, 0x1p-600}) {
+      auto points = base;
+      for (auto& p : points)
+        for (int j = 0; j < D; ++j) p[j] *= factor;
+      const auto t = dewall::triangulate<D>(points);
+      CHECK(t.simplices == reference.simplices);
+      CHECK(t.statistics.grid_cells == reference.statistics.grid_cells);
+      CHECK(t.statistics.cells_visited == reference.statistics.cells_visited);
+      CHECK(t.statistics.candidates_tested == reference.statistics.candidates_tested);
+      CHECK(dewall::test::as_set<D>(t.simplices) == dewall::test::cgal_delaunay<D>(points));
+    }
+  }
+}

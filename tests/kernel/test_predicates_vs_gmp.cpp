@@ -7,8 +7,11 @@
 // exact sign; the exact stage and the full cascade must always do so.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <optional>
+#include <random>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -33,7 +36,7 @@ constexpr int mismatches_shown = 3;
 /// Counts per family: disagreements (with the first few inputs kept) and how
 /// far down the cascade the inputs went.
 struct Tally {
-  int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, exact_zero = 0;
+  int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, scaled_undecided = 0, exact_zero = 0;
   std::string report;
 
   template <int D>
@@ -72,6 +75,9 @@ void check_orientation(const std::vector<Point<D>>& points, Degeneracy degenerac
                        points);
   tally.check_stage<D>("orientation_d_interval", expected, orientation_d_interval<D>(refs),
                        tally.interval_undecided, points);
+  double ignored;
+  tally.check_stage<D>("orientation filter on points scaled by 2^s", expected,
+                       stages::filter_scaled<Orientation_recipe<D>, D>(refs, &ignored), tally.scaled_undecided, points);
   std::swap(refs[0], refs[1]);  // an odd permutation flips the sign
   tally.check<D>("orientation_d, p_0 and p_1 swapped", -expected, orientation_d<D>(refs), points);
 }
@@ -94,6 +100,10 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
                        tally.filter_undecided, points);
   tally.check_stage<D>("side_of_oriented_sphere_d_interval", expected,
                        side_of_oriented_sphere_d_interval<D>(refs), tally.interval_undecided, points);
+  double ignored;
+  tally.check_stage<D>("sphere filter on points scaled by 2^s", expected,
+                       stages::filter_scaled<Side_of_sphere_recipe<D>, D>(refs, &ignored), tally.scaled_undecided,
+                       points);
   std::swap(refs[0], refs[D]);  // an odd permutation of the simplex flips the sign
   tally.check<D>("side_of_oriented_sphere_d, p_0 and p_D swapped", -expected, side_of_oriented_sphere_d<D>(refs),
                  points);
@@ -165,6 +175,44 @@ TEMPLATE_TEST_CASE_SIG("every predicate stage agrees with GMP rationals", "[gmp]
   CHECK(total_cases == cases_per_family * static_cast<long>(families.size()));
   CHECK(filter_undecided > total_cases / 4);
   CHECK(exact_zero > total_cases / 4);
+}
+
+TEMPLATE_TEST_CASE_SIG("far from 1: the filter decides on the points scaled by a power of two", "[predicates]",
+                       ((int D), D), 2, 3, 4, 5, 6) {
+  Rng rng(20261122 + D);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const int exponent : {600, -600, 900, -900}) {
+    for (int trial = 0; trial < 50; ++trial) {
+      std::array<Point<D>, D + 2> p;
+      for (auto& q : p)
+        for (int j = 0; j < D; ++j) q[j] = std::ldexp(unit(rng), exponent);
+      Sphere_points<D> sphere;
+      Orientation_points<D> simplex;
+      for (int i = 0; i <= D + 1; ++i) sphere[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
+      for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
+      std::array<Point<D>, D + 1> first;
+      std::copy_n(p.begin(), D + 1, first.begin());
+      // Outside the plain filter's domain (its products would overflow or underflow) …
+      CHECK(!side_of_oriented_sphere_d_filter<D>(sphere));
+      // … but exactly scaled into it, decided, and right.
+      double computed;
+      const auto o = stages::filter_scaled<Orientation_recipe<D>, D>(simplex, &computed);
+      const auto s = stages::filter_scaled<Side_of_sphere_recipe<D>, D>(sphere, &computed);
+      REQUIRE(o);
+      REQUIRE(s);
+      CHECK(*o == dewall::test::gmp_orientation<D>(first));
+      CHECK(*s == dewall::test::gmp_side_of_oriented_sphere<D>(first, p[D + 1]));
+    }
+  }
+  // Magnitudes 2^1100 apart in one call: no power of two scales both exactly.
+  std::array<Point<D>, D + 1> mixed{};
+  for (int i = 1; i <= D; ++i) mixed[static_cast<std::size_t>(i)][i - 1] = 0x1p500;
+  mixed[0][0] = 0x1p-600;
+  Orientation_points<D> refs;
+  for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &mixed[static_cast<std::size_t>(i)];
+  double computed;
+  CHECK(!stages::filter_scaled<Orientation_recipe<D>, D>(refs, &computed));
+  CHECK(orientation_d<D>(refs) == dewall::test::gmp_orientation<D>(mixed));
 }
 
 TEST_CASE("predicate stats count the deciding stage", "[stats]") {

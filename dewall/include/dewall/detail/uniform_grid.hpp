@@ -38,16 +38,18 @@ class Uniform_grid {
         lo_[i] = std::min(lo_[i], p[i]);
         hi_[i] = std::max(hi_[i], p[i]);
       }
-    // Cubic cells of volume ≈ (box volume)/(n·cells_per_point), ignoring flat axes.
-    double volume = 1;
+    // Cubic cells of volume ≈ (box volume)/(n·cells_per_point), ignoring flat
+    // axes. In logarithms: the volume itself overflows or underflows for boxes
+    // of extent 2^±300 in 4D, and a grid of one cell makes every search a scan.
+    double log2_volume = 0;
     int spanned = 0;
     for (int i = 0; i < D; ++i)
       if (hi_[i] > lo_[i]) {
-        volume *= (hi_[i] - lo_[i]);
+        log2_volume += std::log2(hi_[i] - lo_[i]);
         ++spanned;
       }
     const double target = std::max(1.0, static_cast<double>(n) * cells_per_point);
-    double side = spanned ? std::pow(volume / target, 1.0 / spanned) : 1.0;
+    double side = spanned ? std::exp2((log2_volume - std::log2(target)) / spanned) : 1.0;
     std::size_t total = 1;
     for (int i = 0; i < D; ++i) {
       const double extent = hi_[i] - lo_[i];

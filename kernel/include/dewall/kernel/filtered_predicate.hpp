@@ -21,6 +21,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <optional>
 
 #include "dewall/kernel/determinant.hpp"
@@ -72,6 +73,44 @@ template <class Recipe, int D>
   if (det > bound) return Recipe::sign_adjust;
   if (det < -bound) return -Recipe::sign_adjust;
   return std::nullopt;
+}
+
+/// Stage 1 again, on the points scaled by a power of two 2^s that brings the
+/// largest coordinate difference near 1, for inputs whose differences leave
+/// the filter's domain (coordinates like 2^600 or 2^-600, where the interval
+/// stage overflows or underflows too). Scaling every coordinate by 2^s
+/// multiplies each predicate's determinant by a positive power of two (2^sD,
+/// or 2^s(D+2) with the lifted column), so the sign is the predicate's — when
+/// the scaling is exact: every scaled coordinate zero or a normal double.
+/// Otherwise (coordinates of very different magnitudes in one call), nothing.
+template <class Recipe, int D>
+std::optional<Sign> filter_scaled(const Point_refs<D, Recipe::arity>& p, double* computed) {
+  constexpr int N = Recipe::arity;
+  double largest_difference = 0, largest_coordinate = 0;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < D; ++j) {
+      largest_coordinate = max_abs(largest_coordinate, (*p[static_cast<std::size_t>(i)])[j]);
+      largest_difference = max_abs(largest_difference, (*p[static_cast<std::size_t>(i)])[j] - (*p[0])[j]);
+    }
+  if (largest_difference == 0) return std::nullopt;  // all points equal: the later stages say ZERO
+  // An infinite difference (coordinates near ±2^1023): scale by the coordinates.
+  const int s = std::isfinite(largest_difference) ? -std::ilogb(largest_difference)
+                                                  : -std::ilogb(largest_coordinate) - 2;
+  std::array<Point_d<D>, N> scaled;
+  Point_refs<D, N> refs;
+  for (int i = 0; i < N; ++i) {
+    for (int j = 0; j < D; ++j) {
+      const double x = (*p[static_cast<std::size_t>(i)])[j];
+      if (x != 0) {
+        const int e = std::ilogb(x) + s;
+        if (e < std::numeric_limits<double>::min_exponent - 1 || e > std::numeric_limits<double>::max_exponent - 1)
+          return std::nullopt;
+      }
+      scaled[static_cast<std::size_t>(i)][j] = std::ldexp(x, s);
+    }
+    refs[static_cast<std::size_t>(i)] = &scaled[static_cast<std::size_t>(i)];
+  }
+  return filter<Recipe, D>(refs, computed);
 }
 
 constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1); }
@@ -136,10 +175,16 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 template <class Recipe, int D>
 Sign filtered(const Point_refs<D, Recipe::arity>& p) {
   auto& stats = Recipe::stats();
-  double computed = 1;
+  double computed = std::numeric_limits<double>::quiet_NaN();  // NaN: the filter left its domain
   if (auto s = filter<Recipe, D>(p, &computed)) {
     count(stats.filter);
     return *s;
+  }
+  if (std::isnan(computed)) {
+    if (auto s = filter_scaled<Recipe, D>(p, &computed)) {
+      count(stats.filter);
+      return *s;
+    }
   }
   // A double determinant of exactly 0 almost always means an exactly degenerate
   // input (lattices: small integers compute without rounding), which intervals
