@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "dewall/io/point_reader.hpp"
@@ -41,6 +42,20 @@ Run triangulate_any(const io::Point_table& table);
 /// the same input checks, simplices positively oriented; only the counters
 /// input_points, distinct_points and simplices are set.
 Run triangulate_any_with_cgal(const io::Point_table& table);
+
+/// Calls f(std::integral_constant<int, D>{}) for a dimension D = 2 … 6 known at
+/// run time. \throws Usage_error for any other dimension.
+template <class F>
+decltype(auto) with_dimension(int dimension, F&& f) {
+  switch (dimension) {
+    case 2: return f(std::integral_constant<int, 2>{});
+    case 3: return f(std::integral_constant<int, 3>{});
+    case 4: return f(std::integral_constant<int, 4>{});
+    case 5: return f(std::integral_constant<int, 5>{});
+    case 6: return f(std::integral_constant<int, 6>{});
+  }
+  throw Usage_error("dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+}
 
 /// The points of a table as kernel points. \pre table.dimension == D.
 template <int D>

@@ -36,25 +36,11 @@ certify::Report certify_table(const io::Point_table& points, const io::Simplex_t
 
 certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
                             const certify::Options& options) {
-  switch (points.dimension) {
-    case 2: return certify_table<2>(points, simplices, options);
-    case 3: return certify_table<3>(points, simplices, options);
-    case 4: return certify_table<4>(points, simplices, options);
-    case 5: return certify_table<5>(points, simplices, options);
-    case 6: return certify_table<6>(points, simplices, options);
-  }
-  throw Usage_error("dimension " + std::to_string(points.dimension) + " is not supported (2 to 6)");
+  return with_dimension(points.dimension, [&](auto d) { return certify_table<d()>(points, simplices, options); });
 }
 
 Run triangulate_any(const io::Point_table& table) {
-  switch (table.dimension) {
-    case 2: return triangulate_table<2>(table);
-    case 3: return triangulate_table<3>(table);
-    case 4: return triangulate_table<4>(table);
-    case 5: return triangulate_table<5>(table);
-    case 6: return triangulate_table<6>(table);
-  }
-  throw Usage_error("dimension " + std::to_string(table.dimension) + " is not supported (2 to 6)");
+  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table); });
 }
 
 void print_stats(std::FILE* out, const Run& run) {

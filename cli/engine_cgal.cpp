@@ -48,14 +48,7 @@ Run triangulate_table_with_cgal(const io::Point_table& table) {
 }  // namespace
 
 Run triangulate_any_with_cgal(const io::Point_table& table) {
-  switch (table.dimension) {
-    case 2: return triangulate_table_with_cgal<2>(table);
-    case 3: return triangulate_table_with_cgal<3>(table);
-    case 4: return triangulate_table_with_cgal<4>(table);
-    case 5: return triangulate_table_with_cgal<5>(table);
-    case 6: return triangulate_table_with_cgal<6>(table);
-  }
-  throw Usage_error("dimension " + std::to_string(table.dimension) + " is not supported (2 to 6)");
+  return with_dimension(table.dimension, [&](auto d) { return triangulate_table_with_cgal<d()>(table); });
 }
 
 }  // namespace dewall::cli
