@@ -83,8 +83,9 @@ template <class Recipe, int D>
 /// or 2^s(D+2) with the lifted column), so the sign is the predicate's — when
 /// the scaling is exact: every scaled coordinate zero or a normal double.
 /// Otherwise (coordinates of very different magnitudes in one call), nothing.
+// Cold (inputs far from 1): kept out of line so the common path stays small.
 template <class Recipe, int D>
-std::optional<Sign> filter_scaled(const Point_refs<D, Recipe::arity>& p, double* computed) {
+[[gnu::noinline]] std::optional<Sign> filter_scaled(const Point_refs<D, Recipe::arity>& p, double* computed) {
   constexpr int N = Recipe::arity;
   double largest_difference = 0, largest_coordinate = 0;
   for (int i = 0; i < N; ++i)
