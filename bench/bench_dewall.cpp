@@ -1,5 +1,7 @@
 // Side-by-side timing of dewall and CGAL on the same points, in one run.
-//   bench_dewall [--points N] [--dim 2|3] [--seed S] [--repeat R]
+//   bench_dewall [--points N] [--dim 2|3] [--kind K] [--seed S] [--repeat R]
+// K is a kind of `dewall generate` (default uniform: the unit cube; sphere,
+// grid, lattice-sphere, … are the degenerate and nearly degenerate cases).
 // Prints, for each tool, the best of R runs (seconds) and the ratio to CGAL's
 // sequential Delaunay_triangulation_3 (or _2), after checking that both give
 // the same simplices. Absolute seconds on a shared machine are noise; the
@@ -13,11 +15,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "dewall/dewall.hpp"
+#include "dewall/io/point_generators.hpp"
 
 namespace {
 
@@ -33,12 +35,11 @@ double best_of(int repeat, F&& f) {
 }
 
 template <int D>
-int run(std::size_t n, std::uint64_t seed, int repeat) {
-  std::mt19937_64 rng(seed);
-  std::uniform_real_distribution<double> uniform(0, 1);
-  std::vector<dewall::kernel::Point_d<D>> points(n);
-  for (auto& p : points)
-    for (int j = 0; j < D; ++j) p[j] = uniform(rng);
+int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repeat) {
+  const dewall::io::Point_table table = dewall::io::generate_points(kind, n, D, seed);
+  std::vector<dewall::kernel::Point_d<D>> points(table.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
 
   std::size_t cgal_cells = 0, dewall_serial = 0, dewall_parallel = 0;
   const double t_cgal = best_of(repeat, [&] {
@@ -60,8 +61,8 @@ int run(std::size_t n, std::uint64_t seed, int repeat) {
       best_of(repeat, [&] { dewall_serial = dewall::triangulate<D>(points, serial).simplices.size(); });
   const double t_parallel = best_of(repeat, [&] { dewall_parallel = dewall::triangulate<D>(points).simplices.size(); });
 
-  std::printf("uniform points in the unit %s, n = %zu, seed = %llu, best of %d\n", D == 2 ? "square" : "cube", n,
-              static_cast<unsigned long long>(seed), repeat);
+  std::printf("%s points in E^%d, n = %zu, seed = %llu, best of %d\n", dewall::io::point_kind_name(kind), D,
+              points.size(), static_cast<unsigned long long>(seed), repeat);
   std::printf("%-40s %10s %10s %12s\n", "tool", "seconds", "ratio", "simplices");
   std::printf("%-40s %10.3f %10.2f %12zu\n", D == 2 ? "CGAL Delaunay_triangulation_2" : "CGAL Delaunay_triangulation_3",
               t_cgal, 1.0, cgal_cells);
@@ -81,11 +82,19 @@ int main(int argc, char** argv) {
   std::size_t n = 100000;
   int dim = 3, repeat = 3;
   std::uint64_t seed = 1;
+  dewall::io::Point_kind kind = dewall::io::Point_kind::uniform;
   for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--points")) n = std::strtoull(argv[i + 1], nullptr, 10);
+    if (!std::strcmp(argv[i], "--kind")) {
+      const auto parsed = dewall::io::parse_point_kind(argv[i + 1]);
+      if (!parsed) {
+        std::fprintf(stderr, "bench_dewall: unknown kind %s (%s)\n", argv[i + 1], dewall::io::point_kind_names().c_str());
+        return 2;
+      }
+      kind = *parsed;
+    } else if (!std::strcmp(argv[i], "--points")) n = std::strtoull(argv[i + 1], nullptr, 10);
     else if (!std::strcmp(argv[i], "--dim")) dim = std::atoi(argv[i + 1]);
     else if (!std::strcmp(argv[i], "--seed")) seed = std::strtoull(argv[i + 1], nullptr, 10);
     else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
   }
-  return dim == 2 ? run<2>(n, seed, repeat) : run<3>(n, seed, repeat);
+  return dim == 2 ? run<2>(kind, n, seed, repeat) : run<3>(kind, n, seed, repeat);
 }
