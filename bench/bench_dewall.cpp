@@ -3,21 +3,25 @@
 // K is a kind of `dewall generate` (default uniform: the unit cube; sphere,
 // grid, lattice-sphere, … are the degenerate and nearly degenerate cases).
 // Prints, for each tool, the best of R runs (seconds) and the ratio to CGAL's
-// sequential Delaunay_triangulation_3 (or _2), after checking that both give
-// the same simplices. Absolute seconds on a shared machine are noise; the
+// sequential Delaunay_triangulation_3 (or _2), then checks (untimed) that
+// dewall's simplices, serial and parallel, are CGAL's as index sets. Absolute seconds on a shared machine are noise; the
 // ratios are the figure to report.
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
+#include <exception>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "dewall/cgal/cgal_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
 
@@ -41,7 +45,8 @@ int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repe
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
 
-  std::size_t cgal_cells = 0, dewall_serial = 0, dewall_parallel = 0;
+  std::size_t cgal_cells = 0;
+  dewall::Triangulation<D> serial_result, parallel_result;
   const double t_cgal = best_of(repeat, [&] {
     if constexpr (D == 2) {
       std::vector<CGAL::Epick::Point_2> p;
@@ -57,44 +62,77 @@ int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repe
   });
   dewall::Options serial;
   serial.parallel_depth = 0;
-  const double t_serial =
-      best_of(repeat, [&] { dewall_serial = dewall::triangulate<D>(points, serial).simplices.size(); });
-  const double t_parallel = best_of(repeat, [&] { dewall_parallel = dewall::triangulate<D>(points).simplices.size(); });
+  const double t_serial = best_of(repeat, [&] { serial_result = dewall::triangulate<D>(points, serial); });
+  const double t_parallel = best_of(repeat, [&] { parallel_result = dewall::triangulate<D>(points); });
 
   std::printf("%s points in E^%d, n = %zu, seed = %llu, best of %d\n", dewall::io::point_kind_name(kind), D,
               points.size(), static_cast<unsigned long long>(seed), repeat);
   std::printf("%-40s %10s %10s %12s\n", "tool", "seconds", "ratio", "simplices");
   std::printf("%-40s %10.3f %10.2f %12zu\n", D == 2 ? "CGAL Delaunay_triangulation_2" : "CGAL Delaunay_triangulation_3",
               t_cgal, 1.0, cgal_cells);
-  std::printf("%-40s %10.3f %10.2f %12zu\n", "dewall (1 thread)", t_serial, t_serial / t_cgal, dewall_serial);
+  std::printf("%-40s %10.3f %10.2f %12zu\n", "dewall (1 thread)", t_serial, t_serial / t_cgal,
+              serial_result.simplices.size());
   std::printf("%-40s %10.3f %10.2f %12zu\n", "dewall (parallel recursion, TBB)", t_parallel, t_parallel / t_cgal,
-              dewall_parallel);
-  if (dewall_serial != cgal_cells || dewall_parallel != cgal_cells) {
-    std::fprintf(stderr, "simplex counts differ\n");
+              parallel_result.simplices.size());
+  const auto reference = dewall::cgal::cgal_delaunay<D>(points);
+  if (dewall::cgal::as_simplex_set<D>(serial_result.simplices) != reference ||
+      dewall::cgal::as_simplex_set<D>(parallel_result.simplices) != reference) {
+    std::fprintf(stderr, "bench_dewall: dewall's simplices differ from CGAL's\n");
     return 1;
   }
+  std::printf("dewall's simplices (serial and parallel) are CGAL's\n");
   return 0;
+}
+
+int usage(const char* why) {
+  std::fprintf(stderr,
+               "bench_dewall: %s\nusage: bench_dewall [--points N] [--dim 2|3] [--kind K] [--seed S] [--repeat R]\n"
+               "K: %s\n",
+               why, dewall::io::point_kind_names().c_str());
+  return 2;
+}
+
+// A whole-string unsigned decimal number, or nothing.
+std::optional<std::uint64_t> parse_count(const char* text) {
+  if (*text < '0' || *text > '9') return std::nullopt;
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long value = std::strtoull(text, &end, 10);
+  if (*end != '\0' || errno == ERANGE) return std::nullopt;
+  return value;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::size_t n = 100000;
-  int dim = 3, repeat = 3;
-  std::uint64_t seed = 1;
+  std::uint64_t n = 100000, dim = 3, repeat = 3, seed = 1;
   dewall::io::Point_kind kind = dewall::io::Point_kind::uniform;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    if (!std::strcmp(argv[i], "--kind")) {
-      const auto parsed = dewall::io::parse_point_kind(argv[i + 1]);
-      if (!parsed) {
-        std::fprintf(stderr, "bench_dewall: unknown kind %s (%s)\n", argv[i + 1], dewall::io::point_kind_names().c_str());
-        return 2;
-      }
+  for (int i = 1; i < argc; i += 2) {
+    const std::string option = argv[i];
+    if (i + 1 == argc) return usage((option + " needs a value").c_str());
+    const char* value = argv[i + 1];
+    if (option == "--kind") {
+      const auto parsed = dewall::io::parse_point_kind(value);
+      if (!parsed) return usage((std::string("unknown kind ") + value).c_str());
       kind = *parsed;
-    } else if (!std::strcmp(argv[i], "--points")) n = std::strtoull(argv[i + 1], nullptr, 10);
-    else if (!std::strcmp(argv[i], "--dim")) dim = std::atoi(argv[i + 1]);
-    else if (!std::strcmp(argv[i], "--seed")) seed = std::strtoull(argv[i + 1], nullptr, 10);
-    else if (!std::strcmp(argv[i], "--repeat")) repeat = std::atoi(argv[i + 1]);
+      continue;
+    }
+    std::uint64_t* target = option == "--points" ? &n
+                            : option == "--dim"  ? &dim
+                            : option == "--seed" ? &seed
+                            : option == "--repeat" ? &repeat
+                                                   : nullptr;
+    if (!target) return usage(("unknown option " + option).c_str());
+    const auto parsed = parse_count(value);
+    if (!parsed) return usage((option + " needs a non-negative integer, not " + value).c_str());
+    *target = *parsed;
   }
-  return dim == 2 ? run<2>(kind, n, seed, repeat) : run<3>(kind, n, seed, repeat);
+  if (dim != 2 && dim != 3) return usage("--dim must be 2 or 3");
+  if (repeat < 1 || repeat > 1000) return usage("--repeat must be 1 … 1000");
+  try {
+    return dim == 2 ? run<2>(kind, n, seed, static_cast<int>(repeat)) : run<3>(kind, n, seed, static_cast<int>(repeat));
+  } catch (const std::exception& e) {  // too few points, points not spanning E^D, …
+    std::fprintf(stderr, "bench_dewall: %s\n", e.what());
+    return 1;
+  }
 }
