@@ -12,35 +12,29 @@
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/vtk.hpp"
+#include "text_lines.hpp"
 
 namespace dewall::io {
 namespace {
 
-std::string where(const std::string& name, std::size_t line) { return name + ":" + std::to_string(line) + ": "; }
+using detail::where;
 
 /// Splits a line into its numbers (comments removed). Throws on a token that
 /// is not a complete decimal number; NaN and infinity are accepted here and
 /// rejected by the triangulator with the point's index.
 std::vector<double> parse_numbers(std::string_view line, const std::string& name, std::size_t line_no) {
-  if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
   std::vector<double> values;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i == line.size()) break;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    const std::string token(line.substr(i, j - i));
+  detail::for_each_token(detail::without_comment(line), [&](std::string_view token_view) {
+    const std::string token(token_view);
     char* end = nullptr;
     errno = 0;
     const double v = std::strtod(token.c_str(), &end);
-    if (end != token.c_str() + token.size() || token.empty())
+    if (end != token.c_str() + token.size())
       throw Parse_error(where(name, line_no) + "'" + token + "' is not a number");
     if (errno == ERANGE && std::isinf(v))
       throw Parse_error(where(name, line_no) + "'" + token + "' is out of the range of double");
     values.push_back(v);
-    i = j;
-  }
+  });
   return values;
 }
 

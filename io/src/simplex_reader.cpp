@@ -6,23 +6,18 @@
 #include <iostream>
 #include <string_view>
 
+#include "text_lines.hpp"
+
 namespace dewall::io {
 namespace {
 
-std::string where(const std::string& name, std::size_t line) { return name + ":" + std::to_string(line) + ": "; }
+using detail::where;
 
 /// The non-negative integers of one line (comment removed). Indices must fit in
 /// 32 bits, the width simplices are stored in; anything else is a Parse_error.
 std::vector<std::uint64_t> parse_indices(std::string_view line, const std::string& name, std::size_t line_no) {
-  if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
   std::vector<std::uint64_t> values;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    if (i == line.size()) break;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    const std::string_view token = line.substr(i, j - i);
+  detail::for_each_token(detail::without_comment(line), [&](std::string_view token) {
     std::uint64_t v = 0;
     for (char c : token) {
       if (!std::isdigit(static_cast<unsigned char>(c)))
@@ -31,8 +26,7 @@ std::vector<std::uint64_t> parse_indices(std::string_view line, const std::strin
       if (v > UINT32_MAX) throw Parse_error(where(name, line_no) + "'" + std::string(token) + "' is too large for a vertex index");
     }
     values.push_back(v);
-    i = j;
-  }
+  });
   return values;
 }
 
@@ -109,19 +103,12 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
   const std::size_t width = 1 + k + (header.size() > 2 ? static_cast<std::size_t>(header[2]) : 0);
   while (list.table.size() < count && std::getline(in, line)) {
     // Attributes may be real numbers: parse only the index and the vertices strictly.
-    std::string_view content(line);
-    if (const auto hash = content.find('#'); hash != std::string_view::npos) content = content.substr(0, hash);
     std::string prefix;
-    std::size_t tokens = 0, i = 0;
-    while (i < content.size()) {
-      while (i < content.size() && std::isspace(static_cast<unsigned char>(content[i]))) ++i;
-      if (i == content.size()) break;
-      std::size_t j = i;
-      while (j < content.size() && !std::isspace(static_cast<unsigned char>(content[j]))) ++j;
-      if (tokens < 1 + k) prefix += std::string(content.substr(i, j - i)) + " ";
+    std::size_t tokens = 0;
+    detail::for_each_token(detail::without_comment(line), [&](std::string_view token) {
+      if (tokens < 1 + k) prefix += std::string(token) + " ";
       ++tokens;
-      i = j;
-    }
+    });
     ++line_no;
     if (tokens == 0) continue;
     if (tokens != width)

@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "dewall/io/progress.hpp"
+#include "text_lines.hpp"
 
 namespace dewall::io {
 namespace {
 
-std::string where(const std::string& name, std::size_t line) { return name + ":" + std::to_string(line) + ": "; }
+using detail::where;
 
 /// Shortest decimal form that reads back to the same double (std::to_chars
 /// guarantees the round trip), so VTK output loses nothing.
@@ -58,14 +59,7 @@ std::string lower(std::string s) {
 
 std::vector<std::string> split(const std::string& line) {
   std::vector<std::string> tokens;
-  std::size_t i = 0;
-  while (i < line.size()) {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
-    std::size_t j = i;
-    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
-    if (j > i) tokens.push_back(line.substr(i, j - i));
-    i = j;
-  }
+  detail::for_each_token(line, [&](std::string_view token) { tokens.emplace_back(token); });
   return tokens;
 }
 
