@@ -4,8 +4,8 @@
 // grid, lattice-sphere, … are the degenerate and nearly degenerate cases).
 // Prints, for each tool, the best of R runs (seconds) and the ratio to CGAL's
 // sequential Delaunay_triangulation_3 (or _2), then checks (untimed) that
-// dewall's simplices, serial and parallel, are CGAL's as index sets. Absolute seconds on a shared machine are noise; the
-// ratios are the figure to report.
+// dewall's simplices, serial and parallel, are CGAL's as index sets. Absolute
+// seconds on a shared machine are noise; the ratios are the figure to report.
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -24,6 +24,7 @@
 #include "dewall/cgal/cgal_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
+#include "dewall/kernel/point_array.hpp"
 
 namespace {
 
@@ -41,9 +42,7 @@ double best_of(int repeat, F&& f) {
 template <int D>
 int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repeat) {
   const dewall::io::Point_table table = dewall::io::generate_points(kind, n, D, seed);
-  std::vector<dewall::kernel::Point_d<D>> points(table.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
+  const auto points = dewall::kernel::points_from_coordinates<D>(table.coordinates);
 
   std::size_t cgal_cells = 0;
   dewall::Triangulation<D> serial_result, parallel_result;

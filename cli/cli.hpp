@@ -12,7 +12,7 @@
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/certify/report.hpp"
-#include "dewall/kernel/point.hpp"
+#include "dewall/kernel/point_array.hpp"
 #include "dewall/options.hpp"
 
 namespace dewall::cli {
@@ -60,10 +60,7 @@ decltype(auto) with_dimension(int dimension, F&& f) {
 /// The points of a table as kernel points. \pre table.dimension == D.
 template <int D>
 std::vector<kernel::Point_d<D>> kernel_points(const io::Point_table& table) {
-  std::vector<kernel::Point_d<D>> points(table.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    for (int j = 0; j < D; ++j) points[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
-  return points;
+  return kernel::points_from_coordinates<D>(table.coordinates);
 }
 
 /// Certifies `simplices` against `points` (any supported dimension) with the
