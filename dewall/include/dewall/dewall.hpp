@@ -15,6 +15,14 @@
 //                                  detail/face_side_filter.hpp, detail/pencil_rank.hpp
 //   uniform grid ................. detail/uniform_grid.hpp
 //   input checks, duplicates ..... detail/input.hpp
+//   the whole run, any kernel .... detail/triangulate_generic.hpp
+//
+// With the project's kernel (Filtered_kernel_d, the default) the triangulation
+// runs in the compiled library dewall::dewall (dewall/src/), built with the
+// project's floating-point flags, so it is exact whatever flags the caller
+// compiles with (-ffast-math, -Ofast included) and whatever floating-point
+// environment the caller runs in. With another kernel the algorithm is compiled
+// in the caller's file, which then must not use such flags (floating_point.hpp).
 #pragma once
 
 #include <array>
@@ -23,19 +31,56 @@
 #include <type_traits>
 #include <vector>
 
-#include "dewall/detail/input.hpp"
-#include "dewall/detail/point_set.hpp"
-#include "dewall/detail/wall.hpp"
 #include "dewall/error.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
+#include "dewall/kernel/floating_point.hpp"
 #include "dewall/options.hpp"
+#ifndef DEWALL_UNSAFE_FP_FLAGS
+#include "dewall/detail/triangulate_generic.hpp"
+#endif
 
 namespace dewall {
 
 /// A simplex as D + 1 indices into the input, positively oriented.
 template <int D>
 using Simplex = std::array<std::uint32_t, D + 1>;
+
+namespace detail {
+
+/// The triangulation with the project's kernel, compiled into dewall::dewall
+/// (dewall/src/triangulate_filtered.cpp) for D = 2 … 6; as triangulate_generic.
+template <int D>
+Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
+                                std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels);
+
+template <class>
+inline constexpr bool always_false = false;
+
+/// Runs the triangulation with kernel K: compiled for the project's kernel,
+/// here for any other.
+template <kernel::DelaunayKernel K>
+Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
+                             std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
+  if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
+    (void)k;
+    return triangulate_filtered<K::dimension>(points, options, simplices, wall_levels);
+  } else {
+#ifdef DEWALL_UNSAFE_FP_FLAGS
+    static_assert(always_false<K>,
+                  "dewall: triangulating with a kernel other than Filtered_kernel_d compiles the algorithm "
+                  "in this file, which is compiled with " DEWALL_UNSAFE_FP_FLAGS "; its error bounds need "
+                  "IEEE arithmetic. Compile this file without that flag, or use the default kernel "
+                  "(dewall::triangulate<D>), which is compiled into the dewall library and works whatever "
+                  "your flags are.");
+    return {};
+#else
+    return triangulate_generic<K>(k, points, options, simplices, wall_levels);
+#endif
+  }
+}
+
+}  // namespace detail
 
 /// The Delaunay triangulation of `points`, handed to `sink(simplex)` once for
 /// each simplex (a dewall::Simplex<D> of input indices, positively oriented), in
@@ -51,35 +96,14 @@ template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {
   constexpr int D = K::dimension;
-  const std::vector<std::size_t> input = detail::distinct_points<K>(k, points);
-  std::vector<const typename K::Point_d*> refs(input.size());
-  for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
-  const detail::Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
-  detail::require_full_dimension<D>(ps.coords_for_checks());
-
-  detail::Wall_builder<K> builder(ps, options.parallel_depth);
-  std::vector<detail::Index> all(ps.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<detail::Index>(i);
-  std::vector<detail::Built_simplex<D>> local;
-  builder.run(all, local);
-  for (const auto& s : local) {
-    Simplex<D> out;
-    for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s.vertices[i]]);
-    if constexpr (std::is_invocable_v<Sink, const Simplex<D>&, int>) sink(out, static_cast<int>(s.wall_level));
-    else sink(out);
+  constexpr bool wants_level = std::is_invocable_v<Sink, const Simplex<D>&, int>;
+  std::vector<Simplex<D>> simplices;
+  std::vector<std::uint8_t> levels;
+  const Statistics st = detail::run_triangulation<K>(points, options, k, simplices, wants_level ? &levels : nullptr);
+  for (std::size_t i = 0; i < simplices.size(); ++i) {
+    if constexpr (wants_level) sink(simplices[i], static_cast<int>(levels[i]));
+    else sink(simplices[i]);
   }
-
-  Statistics st;
-  st.input_points = points.size();
-  st.distinct_points = ps.size();
-  st.simplices = builder.stats().simplices;
-  st.first_wall_simplices = builder.stats().first_wall_simplices;
-  st.recursion_depth = builder.stats().max_depth;
-  st.simplex_searches = builder.search_stats().searches;
-  st.cells_visited = builder.search_stats().cells_visited;
-  st.candidates_tested = builder.search_stats().candidates;
-  st.grid_cells = ps.grid.cell_count();
-  st.max_points_in_cell = ps.grid.max_points_in_cell();
   return st;
 }
 
@@ -96,8 +120,7 @@ template <kernel::DelaunayKernel K>
 Triangulation<K::dimension> triangulate(std::span<const typename K::Point_d> points, const Options& options = {},
                                         const K& k = {}) {
   Triangulation<K::dimension> t;
-  t.statistics = triangulate_to<K>(points, [&](const Simplex<K::dimension>& s) { t.simplices.push_back(s); },
-                                   options, k);
+  t.statistics = detail::run_triangulation<K>(points, options, k, t.simplices, nullptr);
   return t;
 }
 

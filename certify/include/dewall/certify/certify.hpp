@@ -60,12 +60,15 @@
 #include <cstdint>
 #include <numeric>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "dewall/certify/face_grouping.hpp"
 #include "dewall/certify/report.hpp"
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
+#include "dewall/kernel/filtered_kernel_d.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
 namespace dewall::certify {
 
@@ -74,6 +77,22 @@ template <int D>
 using Simplex_indices = std::array<std::uint32_t, D + 1>;
 
 namespace detail {
+
+/// certify() with the project's kernel, compiled into dewall::certify with the
+/// project's flags (certify/src/certify_filtered.cpp), D = 2 … 6.
+template <int D>
+Report certify_filtered(std::span<const kernel::Point_d<D>> points, std::span<const Simplex_indices<D>> simplices,
+                        const Options& options);
+
+template <class>
+inline constexpr bool always_false = false;
+
+}  // namespace detail
+}  // namespace dewall::certify
+
+#ifndef DEWALL_UNSAFE_FP_FLAGS
+DEWALL_FLOATING_POINT_CODE_BEGIN
+namespace dewall::certify::detail {
 
 template <kernel::DelaunayKernel K>
 class Certifier {
@@ -344,7 +363,11 @@ class Certifier {
   std::vector<Face_ref> boundary_;     // facets of one cell: (cell, opposite position)
 };
 
-}  // namespace detail
+}  // namespace dewall::certify::detail
+DEWALL_FLOATING_POINT_CODE_END
+#endif
+
+namespace dewall::certify {
 
 /// Decides whether `simplices` (rows of D + 1 input indices, any vertex order,
 /// any row order) is a Delaunay triangulation of `points`, and whether it is
@@ -352,12 +375,28 @@ class Certifier {
 /// and dewall compute). Duplicate points: the first occurrence must be the
 /// vertex, later copies must not appear. See the file comment for the checks
 /// and why they suffice.
+/// With the project's kernel the check runs in the compiled library, whatever
+/// the caller's floating-point flags; with another kernel it is compiled here,
+/// and refuses to compile under flags that break its arithmetic (floating_point.hpp).
 /// Complexity: O(n log n + m·D²) predicates and bookkeeping, n points, m simplices.
 template <kernel::DelaunayKernel K>
 Report certify(std::span<const typename K::Point_d> points,
                std::span<const Simplex_indices<K::dimension>> simplices, const Options& options = {},
                const K& k = {}) {
-  return detail::Certifier<K>(k, points, simplices, options).run();
+  if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
+    return detail::certify_filtered<K::dimension>(points, simplices, options);
+  } else {
+#ifdef DEWALL_UNSAFE_FP_FLAGS
+    static_assert(detail::always_false<K>,
+                  "dewall: certify with a kernel other than Filtered_kernel_d is compiled in this file, "
+                  "which is compiled with " DEWALL_UNSAFE_FP_FLAGS "; its error bounds need IEEE "
+                  "arithmetic. Compile this file without that flag, or use Filtered_kernel_d.");
+    return {};
+#else
+    const kernel::Fp_environment_guard guard;
+    return detail::Certifier<K>(k, points, simplices, options).run();
+#endif
+  }
 }
 
 /// Convenience form for vectors.

@@ -26,7 +26,9 @@
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
 #include "dewall/kernel/sign.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
@@ -156,3 +158,4 @@ class Face_side_filter {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

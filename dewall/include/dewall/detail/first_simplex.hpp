@@ -30,7 +30,9 @@
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/make_simplex.hpp"
 #include "dewall/detail/split.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <class K>
@@ -112,3 +114,4 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
 }
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

@@ -17,7 +17,9 @@
 
 #include "dewall/error.hpp"
 #include "dewall/kernel/sign.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 /// Input indices of the distinct points, each the first occurrence of its
@@ -90,3 +92,4 @@ void require_full_dimension(std::span<const std::array<double, D>> x) {
 }
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

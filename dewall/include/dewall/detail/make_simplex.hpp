@@ -28,7 +28,9 @@
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 /// Counters for the paper's Table 1.
@@ -271,3 +273,4 @@ class Simplex_search {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

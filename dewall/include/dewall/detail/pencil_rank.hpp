@@ -15,7 +15,9 @@
 #include <limits>
 
 #include "dewall/detail/uniform_grid.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
@@ -80,3 +82,4 @@ class Pencil_rank {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

@@ -12,7 +12,9 @@
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/uniform_grid.hpp"
 #include "dewall/kernel/sign.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <class K>
@@ -106,3 +108,4 @@ struct Point_set {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

@@ -41,7 +41,9 @@
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
@@ -192,3 +194,4 @@ class Simplex_sphere {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

@@ -10,7 +10,9 @@
 
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/uniform_grid.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
@@ -50,3 +52,4 @@ std::optional<Split<D>> choose_split(std::span<Index> points, const std::vector<
 }
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

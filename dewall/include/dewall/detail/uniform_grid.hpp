@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "dewall/detail/face.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
@@ -154,3 +156,4 @@ class Uniform_grid {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

@@ -28,7 +28,9 @@
 
 #include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/first_simplex.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 struct Wall_stats {
@@ -124,6 +126,8 @@ class Wall_builder {
     if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
       std::vector<Built_simplex<D>> out1, out2;
       auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Built_simplex<D>>& o) {
+        // A worker thread has its own floating-point environment (floating_point.hpp).
+        const kernel::Fp_environment_guard guard;
         Simplex_search<K> s(ps_);
         Wall_stats st;
         recurse(p, std::move(a), depth + 1, false, o, s, st);
@@ -156,3 +160,4 @@ class Wall_builder {
 };
 
 }  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

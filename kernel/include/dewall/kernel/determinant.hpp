@@ -16,7 +16,9 @@
 #include <bit>
 #include <cstddef>
 #include <type_traits>
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 template <class T, int K>
@@ -91,3 +93,4 @@ template <class T, int K>
 }
 
 }  // namespace dewall::kernel
+DEWALL_FLOATING_POINT_CODE_END

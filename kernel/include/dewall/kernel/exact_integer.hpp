@@ -13,7 +13,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 using Exact_integer = mpz_class;
@@ -84,3 +86,4 @@ class Common_scale {
 };
 
 }  // namespace dewall::kernel
+DEWALL_FLOATING_POINT_CODE_END

@@ -25,6 +25,7 @@
 #include <optional>
 
 #include "dewall/kernel/determinant.hpp"
+#include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/exact_integer.hpp"
 #include "dewall/kernel/interval.hpp"
@@ -32,6 +33,7 @@
 #include "dewall/kernel/predicate_stats.hpp"
 #include "dewall/kernel/sign.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel::stages {
 
 /// max(m, |v|) without a libm call. An infinite v wins and then fails the
@@ -42,7 +44,7 @@ inline double max_abs(double m, double v) {
 }
 
 template <int D, int N>
-using Point_refs = std::array<const Point_d<D>*, N>;
+using Point_refs = kernel::Point_refs<D, N>;
 
 /// Stage 1: the determinant in double, accepted when it exceeds the proven
 /// bound ε·Π_j M̂_j (error_bounds.hpp). Returns nothing when undecided or when
@@ -202,3 +204,4 @@ Sign filtered(const Point_refs<D, Recipe::arity>& p) {
 }
 
 }  // namespace dewall::kernel::stages
+DEWALL_FLOATING_POINT_CODE_END

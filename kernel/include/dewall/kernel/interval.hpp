@@ -14,8 +14,8 @@
 //
 // Two flops per bound instead of a rounding-mode guard (CGAL's
 // Protect_FPU_rounding) or a nextafter call: correct whatever the compiler does
-// with the floating-point environment, as long as it keeps IEEE double
-// arithmetic (no -ffast-math, which the build never enables).
+// with the rounding mode, as long as it keeps IEEE double arithmetic
+// (floating_point.hpp says how the flags and the environment are ensured).
 #pragma once
 
 #include <cmath>
@@ -23,7 +23,9 @@
 #include <optional>
 
 #include "dewall/kernel/sign.hpp"
+#include "dewall/kernel/floating_point.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 class Interval {
@@ -91,3 +93,4 @@ class Interval {
 };
 
 }  // namespace dewall::kernel
+DEWALL_FLOATING_POINT_CODE_END

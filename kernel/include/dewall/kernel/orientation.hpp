@@ -4,10 +4,51 @@
 // counterclockwise in 2D, and in 3D when p_3 lies on the positive side of the
 // plane through p_0, p_1, p_2 oriented by (p_1 − p_0) × (p_2 − p_0). ZERO when the
 // points are affinely dependent. Orientation is never perturbed.
+//
+// Where the including file's compile flags are unsafe (floating_point.hpp),
+// only the declarations below are seen, and the calls go to the instantiations
+// compiled into dewall::kernel (kernel/src/predicates.cpp, D = 2 … 6).
 #pragma once
 
+#include <optional>
+
+#include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/point.hpp"
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::kernel {
+
+template <int D>
+using Orientation_points = Point_refs<D, D + 1>;
+
+/// The static filter alone: a proven sign, or nothing.
+template <int D>
+std::optional<Sign> orientation_d_filter(const Orientation_points<D>& p);
+/// The interval stage alone.
+template <int D>
+std::optional<Sign> orientation_d_interval(const Orientation_points<D>& p);
+/// The exact stage alone (128-bit integers or GMP).
+template <int D>
+Sign orientation_d_exact(const Orientation_points<D>& p);
+/// The filtered predicate: exact for every finite input, in any floating-point
+/// environment of the caller (Fp_environment_guard).
+/// \pre every coordinate is finite. Cost: O(D·2^D) flops when the filter decides.
+template <int D>
+Sign orientation_d(const Orientation_points<D>& p);
+
+/// Convenience form: orientation_d(p0, p1, …, pD).
+template <int D, class... Rest>
+  requires(sizeof...(Rest) == D)
+Sign orientation_d(const Point_d<D>& p0, const Rest&... rest) {
+  return orientation_d<D>(Orientation_points<D>{&p0, &rest...});
+}
+
+}  // namespace dewall::kernel
+
+#ifndef DEWALL_UNSAFE_FP_FLAGS
 #include "dewall/kernel/filtered_predicate.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 template <int D>
@@ -30,34 +71,26 @@ struct Orientation_recipe {
 };
 
 template <int D>
-using Orientation_points = stages::Point_refs<D, D + 1>;
-
-/// The static filter alone: a proven sign, or nothing.
-template <int D>
 std::optional<Sign> orientation_d_filter(const Orientation_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::filter<Orientation_recipe<D>, D>(p);
 }
-/// The interval stage alone.
 template <int D>
 std::optional<Sign> orientation_d_interval(const Orientation_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::interval<Orientation_recipe<D>, D>(p);
 }
-/// The exact stage alone (GMP).
 template <int D>
 Sign orientation_d_exact(const Orientation_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::exact<Orientation_recipe<D>, D>(p);
 }
-/// The filtered predicate: exact for every finite input.
-/// \pre every coordinate is finite. Cost: O(D·2^D) flops when the filter decides.
 template <int D>
 Sign orientation_d(const Orientation_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::filtered<Orientation_recipe<D>, D>(p);
-}
-/// Convenience form: orientation_d(p0, p1, …, pD).
-template <int D, class... Rest>
-  requires(sizeof...(Rest) == D)
-Sign orientation_d(const Point_d<D>& p0, const Rest&... rest) {
-  return orientation_d<D>(Orientation_points<D>{&p0, &rest...});
 }
 
 }  // namespace dewall::kernel
+DEWALL_FLOATING_POINT_CODE_END
+#endif

@@ -26,6 +26,10 @@ struct Point_d {
   friend constexpr bool operator==(const Point_d&, const Point_d&) = default;
 };
 
+/// N points by reference, as the predicates take them.
+template <int D, int N>
+using Point_refs = std::array<const Point_d<D>*, N>;
+
 /// Lexicographic comparison of the coordinates (x, then y, ...), exact.
 /// This is the total order of CGAL's `compare_xyz` / `Compare_lexicographically_d`,
 /// which the symbolic perturbation is defined on.

@@ -8,12 +8,63 @@
 // centre, |p_i − c|² = r² and M(c) = r²·det[p_i, 1] = r²·(−1)^D·orientation(p),
 // expanding det[p_i, 1] along its last column after subtracting row 0. So
 // inside ⇔ (−1)^D·M > 0 for a positively oriented simplex.
+//
+// Where the including file's compile flags are unsafe (floating_point.hpp),
+// only the declarations below are seen, and the calls go to the instantiations
+// compiled into dewall::kernel (kernel/src/predicates.cpp, D = 2 … 6).
 #pragma once
 
-#include "dewall/kernel/filtered_predicate.hpp"
+#include <optional>
+
+#include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/orientation.hpp"
+#include "dewall/kernel/point.hpp"
+#include "dewall/kernel/sign.hpp"
+
+namespace dewall::kernel {
+
+template <int D>
+using Sphere_points = Point_refs<D, D + 2>;  // simplex, then the query
+
+/// The stages alone: the static filter, the interval stage, the exact stage.
+template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p);
+template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_interval(const Sphere_points<D>& p);
+template <int D>
+Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p);
+
+/// The filtered, unperturbed predicate: may return ON_ORIENTED_BOUNDARY.
+/// Exact in any floating-point environment of the caller (Fp_environment_guard).
+/// \pre every coordinate is finite.
+template <int D>
+Oriented_side side_of_oriented_sphere_d(const Sphere_points<D>& p);
+
+/// The perturbed predicate (CGAL's lexicographic scheme, perturbation.hpp):
+/// never ON_ORIENTED_BOUNDARY.
+/// \pre p_0 … p_D positively oriented (orientation_d == POSITIVE), q distinct from them.
+template <int D>
+Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p);
+
+/// Convenience forms: side_of_oriented_sphere_d{,_sos}(p0, …, pD, q).
+template <int D, class... Rest>
+  requires(sizeof...(Rest) == D + 1)
+Oriented_side side_of_oriented_sphere_d(const Point_d<D>& p0, const Rest&... rest) {
+  return side_of_oriented_sphere_d<D>(Sphere_points<D>{&p0, &rest...});
+}
+template <int D, class... Rest>
+  requires(sizeof...(Rest) == D + 1)
+Oriented_side side_of_oriented_sphere_d_sos(const Point_d<D>& p0, const Rest&... rest) {
+  return side_of_oriented_sphere_d_sos<D>(Sphere_points<D>{&p0, &rest...});
+}
+
+}  // namespace dewall::kernel
+
+#ifndef DEWALL_UNSAFE_FP_FLAGS
+#include "dewall/kernel/filtered_predicate.hpp"
 #include "dewall/kernel/perturbation.hpp"
 
+DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 template <int D>
@@ -40,51 +91,36 @@ struct Side_of_sphere_recipe {
 };
 
 template <int D>
-using Sphere_points = stages::Point_refs<D, D + 2>;  // simplex, then the query
-
-template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::filter<Side_of_sphere_recipe<D>, D>(p);
 }
 template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_interval(const Sphere_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::interval<Side_of_sphere_recipe<D>, D>(p);
 }
 template <int D>
 Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p) {
+  const Fp_environment_guard guard;
   return stages::exact<Side_of_sphere_recipe<D>, D>(p);
 }
-
-/// The filtered, unperturbed predicate: may return ON_ORIENTED_BOUNDARY.
-/// \pre every coordinate is finite.
 template <int D>
 Oriented_side side_of_oriented_sphere_d(const Sphere_points<D>& p) {
+  const Fp_environment_guard guard;
   return static_cast<Oriented_side>(stages::filtered<Side_of_sphere_recipe<D>, D>(p));
 }
-
-/// The perturbed predicate (CGAL's lexicographic scheme, perturbation.hpp):
-/// never ON_ORIENTED_BOUNDARY.
-/// \pre p_0 … p_D positively oriented (orientation_d == POSITIVE), q distinct from them.
 template <int D>
 Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
-  const Oriented_side side = side_of_oriented_sphere_d<D>(p);
+  const Fp_environment_guard guard;
+  const auto side = static_cast<Oriented_side>(stages::filtered<Side_of_sphere_recipe<D>, D>(p));
   if (side != ON_ORIENTED_BOUNDARY) return side;
   count(predicate_stats().side_of_sphere[D].perturbed);
   return perturbed_side_of_sphere<D>(
-      p, [](const Orientation_points<D>& o) { return orientation_d<D>(o); },
+      p, [](const Orientation_points<D>& o) { return stages::filtered<Orientation_recipe<D>, D>(o); },
       [](const Point_d<D>& a, const Point_d<D>& b) { return compare_lexicographically(a, b) == SMALLER; });
 }
 
-/// Convenience forms: side_of_oriented_sphere_d{,_sos}(p0, …, pD, q).
-template <int D, class... Rest>
-  requires(sizeof...(Rest) == D + 1)
-Oriented_side side_of_oriented_sphere_d(const Point_d<D>& p0, const Rest&... rest) {
-  return side_of_oriented_sphere_d<D>(Sphere_points<D>{&p0, &rest...});
-}
-template <int D, class... Rest>
-  requires(sizeof...(Rest) == D + 1)
-Oriented_side side_of_oriented_sphere_d_sos(const Point_d<D>& p0, const Rest&... rest) {
-  return side_of_oriented_sphere_d_sos<D>(Sphere_points<D>{&p0, &rest...});
-}
-
 }  // namespace dewall::kernel
+DEWALL_FLOATING_POINT_CODE_END
+#endif

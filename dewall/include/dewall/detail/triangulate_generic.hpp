@@ -1,0 +1,66 @@
+// The whole triangulation for any kernel: input checks, the point set, the
+// DeWall recursion, the simplices mapped back to input indices. dewall.hpp
+// calls it for a user's kernel; the compiled library (dewall/src/) instantiates
+// it for Filtered_kernel_d with the project's flags.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "dewall/detail/input.hpp"
+#include "dewall/detail/point_set.hpp"
+#include "dewall/detail/wall.hpp"
+#include "dewall/kernel/floating_point.hpp"
+#include "dewall/options.hpp"
+
+DEWALL_FLOATING_POINT_CODE_BEGIN
+namespace dewall::detail {
+
+/// Appends the Delaunay simplices of `points` (input indices, positively
+/// oriented, in DeWall's depth-first order) to `simplices`, and the recursion
+/// level of the wall that built each one to `wall_levels` when it is given.
+/// \throws Invalid_input (see dewall::triangulate_to).
+template <class K>
+Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> points, const Options& options,
+                               std::vector<std::array<std::uint32_t, K::dimension + 1>>& simplices,
+                               std::vector<std::uint8_t>* wall_levels) {
+  constexpr int D = K::dimension;
+  const kernel::Fp_environment_guard guard;
+  const std::vector<std::size_t> input = distinct_points<K>(k, points);
+  std::vector<const typename K::Point_d*> refs(input.size());
+  for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
+  const Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
+  require_full_dimension<D>(ps.coords_for_checks());
+
+  Wall_builder<K> builder(ps, options.parallel_depth);
+  std::vector<Index> all(ps.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
+  std::vector<Built_simplex<D>> built;
+  builder.run(all, built);
+  simplices.reserve(simplices.size() + built.size());
+  if (wall_levels) wall_levels->reserve(wall_levels->size() + built.size());
+  for (const auto& s : built) {
+    std::array<std::uint32_t, D + 1> out;
+    for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s.vertices[i]]);
+    simplices.push_back(out);
+    if (wall_levels) wall_levels->push_back(s.wall_level);
+  }
+
+  Statistics st;
+  st.input_points = points.size();
+  st.distinct_points = ps.size();
+  st.simplices = builder.stats().simplices;
+  st.first_wall_simplices = builder.stats().first_wall_simplices;
+  st.recursion_depth = builder.stats().max_depth;
+  st.simplex_searches = builder.search_stats().searches;
+  st.cells_visited = builder.search_stats().cells_visited;
+  st.candidates_tested = builder.search_stats().candidates;
+  st.grid_cells = ps.grid.cell_count();
+  st.max_points_in_cell = ps.grid.max_points_in_cell();
+  return st;
+}
+
+}  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END

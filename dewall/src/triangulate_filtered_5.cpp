@@ -1,0 +1,6 @@
+// detail::triangulate_filtered<5>, compiled with the project's flags.
+#include "triangulate_filtered.hpp"
+
+template dewall::Statistics dewall::detail::triangulate_filtered<5>(std::span<const kernel::Point_d<5>>,
+                                                                     const Options&, std::vector<Simplex<5>>&,
+                                                                     std::vector<std::uint8_t>*);
