@@ -9,6 +9,8 @@
 
 #include <cfenv>
 #include <cmath>
+#include <random>
+#include <utility>
 #include <vector>
 
 #include "dewall/certify/certify.hpp"
@@ -89,7 +91,51 @@ TEST_CASE("predicates are exact under flush-to-zero and upward rounding", "[kern
   CHECK(dewall::kernel::orientation_d<3>(o, x, y, z) == orientation);
   CHECK(dewall::kernel::orientation_d_exact<3>({&o, &x, &y, &z}) == orientation);
   CHECK(dewall::kernel::side_of_oriented_sphere_d<3>(o, x, y, z, q) == side);
+  // The exact order of coordinates: DAZ makes the hardware say 2^-1074 == 0.
+  CHECK(dewall::kernel::compare_lexicographically(x, o) == dewall::kernel::LARGER);
+  CHECK(dewall::kernel::compare_lexicographically(P{{-0.0, 0, 0}}, o) == dewall::kernel::EQUAL);
   CHECK(Hostile_environment::in_force());  // the caller's environment is back
+}
+
+TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero", "[kernel][fp-environment]") {
+  // Near-degenerate inputs, where a filter's bound is tight: points on a plane,
+  // then moved by a few ulps, at several scales (some entries subnormal).
+  std::mt19937_64 rng(20261123);
+  std::uniform_int_distribution<int> coordinate(-8, 8), nudge(-3, 3), scale(-1060, 40);
+  using P = Point_d<3>;
+  std::vector<std::array<P, 5>> cases;
+  for (int k = 0; k < 3000; ++k) {
+    std::array<P, 5> c;
+    const int s = scale(rng);
+    for (auto& p : c) {
+      for (int j = 0; j < 2; ++j) p[j] = std::ldexp(coordinate(rng), s);
+      p[2] = std::ldexp(p[0] + p[1] - 1, 0);  // the plane z = x + y − 1
+      for (int j = 0; j < 3; ++j)
+        for (int n = nudge(rng); n != 0; n += n > 0 ? -1 : 1) p[j] = std::nextafter(p[j], n > 0 ? 1e300 : -1e300);
+    }
+    cases.push_back(c);
+  }
+  std::vector<std::pair<int, int>> expected;
+  for (const auto& c : cases)
+    expected.emplace_back(dewall::test::gmp_orientation<3>({c[0], c[1], c[2], c[3]}),
+                          dewall::test::gmp_side_of_oriented_sphere<3>({c[0], c[1], c[2], c[3]}, c[4]));
+  const Hostile_environment hostile;
+  int decided = 0;
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const auto& c = cases[k];
+    const dewall::kernel::Orientation_points<3> o{&c[0], &c[1], &c[2], &c[3]};
+    const dewall::kernel::Sphere_points<3> s{&c[0], &c[1], &c[2], &c[3], &c[4]};
+    INFO("case " << k);
+    if (const auto f = dewall::kernel::orientation_d_filter<3>(o)) {
+      ++decided;
+      CHECK(*f == expected[k].first);
+    }
+    if (const auto f = dewall::kernel::side_of_oriented_sphere_d_filter<3>(s)) CHECK(*f == expected[k].second);
+    CHECK(dewall::kernel::orientation_d<3>(o) == expected[k].first);
+    CHECK(dewall::kernel::side_of_oriented_sphere_d<3>(s) == expected[k].second);
+  }
+  CHECK(decided > 0);  // the filter was exercised, not only the later stages
+  CHECK(Hostile_environment::in_force());
 }
 
 TEMPLATE_TEST_CASE_SIG("triangulate and certify are exact under flush-to-zero and upward rounding",

@@ -7,7 +7,12 @@
 //                                        X[i][D] = Σ_j (p_i[j] − q[j])²
 // and det is evaluated by `determinant` (determinant.hpp).
 //
-// Model. Without underflow or overflow, fl(a ∘ b) = (a ∘ b)(1 + δ), |δ| ≤ u = 2^-53.
+// Model. Without underflow or overflow, fl(a ∘ b) = (a ∘ b)(1 + δ) with |δ| ≤ u.
+// We take u = 2^-52, which bounds the error of one operation in every rounding
+// mode (round-to-nearest alone would allow 2^-53): the static filters then
+// hold whatever rounding mode the caller runs in, and need no guard of the
+// floating-point environment on their fast path (floating_point.hpp). The cost
+// is a bound twice as large, which the filter almost never meets.
 // Write θ_n for a product of n factors (1 + δ_i); |θ_n − 1| ≤ γ_n = n·u / (1 − n·u)
 // (Higham, "Accuracy and Stability of Numerical Algorithms", Lemma 3.1).
 //
@@ -27,24 +32,30 @@
 // Step 3, computable bound. We only know the computed maxima M̂_j; they exceed
 // the exact ones by at most the factors above (|x| ≤ |x̂|/(1−u), lifted entries
 // by 1/(1−γ_{D+2})), and B = ε·Π M̂_j is itself rounded K times. All of these together
-// stay below (1 + 64u) < (1 + 2^-46) for K ≤ 8, well inside the (1 + 2^-30)
+// stay below (1 + 64u) = (1 + 2^-46) for K ≤ 8, well inside the (1 + 2^-30)
 // margin that `filter_epsilon` multiplies in.
 // Hence: if |fl(det)| > ε_K · Π_j M̂_j then sign(fl(det)) = sign(det).
 //
-// Step 4, the domain. The model ignores underflow (a product below 2^-1022 can
-// lose up to 2^-1075 absolutely) and overflow. The filter therefore runs only
-// when every spatial column maximum lies in [2^-100, 2^100] (a zero column is
-// handled before: it makes det exactly 0). Then: no value exceeds
-// K!·D·2^(100(K+1)) < 2^900 (no overflow), and the total absolute error from
-// underflows, at most K!·K products each losing 2^-1075 and later multiplied by
-// the maxima of the remaining columns (≤ Π_j M_j · 2^(100(K+1))), is below
-// 2^(16 − 1075 + 800) Π_j M_j < 2^-200·ε·Π_j M_j, which the margin covers too.
+// Step 4, the domain. The model ignores underflow and overflow. A product
+// below 2^-1022 loses less than 2^-1022 absolutely — 2^-1075 with gradual
+// underflow, 2^-1022 when the caller's environment flushes results to zero
+// (FTZ) — and a subnormal input read as zero (DAZ) changes an entry by less
+// than 2^-1022 too. The filter therefore runs only when every spatial column
+// maximum lies in [2^-100, 2^100] (a zero column is handled before, see
+// filtered_predicate.hpp). Then: no value exceeds K!·D·2^(100(K+1)) < 2^900
+// (no overflow), and the total absolute error from underflows, at most K!·K
+// products or entries each losing 2^-1022 and later multiplied by the maxima of
+// the remaining columns (≤ Π_j M_j · 2^(100(K+1))), is below
+// 2^(16 − 1022 + 800) Π_j M_j = 2^-206 Π_j M_j, far below the margin's share
+// 2^-30·ε·Π_j M_j ≥ 2^-79 Π_j M_j (every ε here is at least 2^-49). So the
+// filter's answers hold in any rounding mode and with FTZ/DAZ on.
 // Inputs outside the domain go to the interval stage, which has no such limit.
 #pragma once
 
 namespace dewall::kernel::error_bounds {
 
-inline constexpr double unit_roundoff = 0x1p-53;
+/// The relative error of one operation in any rounding mode (model above).
+inline constexpr double unit_roundoff = 0x1p-52;
 
 /// c(r): rounding factors accumulated by an r×r minor of `determinant`.
 constexpr int expansion_factors(int r) { return r * (r + 1) / 2 - 1; }

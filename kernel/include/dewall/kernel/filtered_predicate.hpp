@@ -25,9 +25,9 @@
 #include <optional>
 
 #include "dewall/kernel/determinant.hpp"
-#include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/exact_integer.hpp"
+#include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/interval.hpp"
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/predicate_stats.hpp"
@@ -46,9 +46,19 @@ inline double max_abs(double m, double v) {
 template <int D, int N>
 using Point_refs = kernel::Point_refs<D, N>;
 
+/// Whether every point has the same coordinate j (±0 alike), from the bits.
+template <int D, int N>
+bool same_coordinate(const Point_refs<D, N>& p, int j) {
+  for (int i = 1; i < N; ++i)
+    if (order_key((*p[static_cast<std::size_t>(i)])[j]) != order_key((*p[0])[j])) return false;
+  return true;
+}
+
 /// Stage 1: the determinant in double, accepted when it exceeds the proven
 /// bound ε·Π_j M̂_j (error_bounds.hpp). Returns nothing when undecided or when
-/// the column maxima leave the filter's domain.
+/// the column maxima leave the filter's domain. Its answers hold in any
+/// rounding mode and with FTZ/DAZ on (error_bounds.hpp, steps 1 and 4), so it
+/// runs without a guard of the environment; the later stages hold one.
 /// `computed` (optional) receives the double determinant when the filter got that far.
 template <class Recipe, int D>
 [[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p,
@@ -62,9 +72,10 @@ template <class Recipe, int D>
     for (int i = 0; i < K; ++i)
       column_max = max_abs(column_max, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
     if (j < Recipe::spatial_columns) {
-      // A computed difference is 0 exactly when the coordinates are equal
-      // (gradual underflow), so a zero column makes the exact determinant 0.
-      if (column_max == 0) return ZERO;
+      // A zero column makes the exact determinant 0 when the points share that
+      // coordinate. The computed column says so only under gradual underflow
+      // (DAZ reads a subnormal as 0), so the bits decide.
+      if (column_max == 0) return same_coordinate<D, Recipe::arity>(p, j) ? std::optional(ZERO) : std::nullopt;
       if (!(column_max >= error_bounds::min_column_max && column_max <= error_bounds::max_column_max))
         return std::nullopt;
     }
@@ -174,15 +185,13 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
   return Recipe::sign_adjust * static_cast<Sign>(sgn(determinant<Exact_integer, Recipe::size>(m)));
 }
 
-/// The cascade, counting which stage decided.
+/// The stages after an undecided filter, under a guard of the floating-point
+/// environment (they assume round-to-nearest and gradual underflow). Out of
+/// line: the filter decides nearly every call.
 template <class Recipe, int D>
-Sign filtered(const Point_refs<D, Recipe::arity>& p) {
+[[gnu::noinline]] Sign after_filter(const Point_refs<D, Recipe::arity>& p, double computed) {
+  const Fp_environment_guard guard;
   auto& stats = Recipe::stats();
-  double computed = std::numeric_limits<double>::quiet_NaN();  // NaN: the filter left its domain
-  if (auto s = filter<Recipe, D>(p, &computed)) {
-    count(stats.filter);
-    return *s;
-  }
   if (std::isnan(computed)) {
     if (auto s = filter_scaled<Recipe, D>(p, &computed)) {
       count(stats.filter);
@@ -201,6 +210,18 @@ Sign filtered(const Point_refs<D, Recipe::arity>& p) {
   }
   count(stats.exact);
   return exact<Recipe, D>(p);
+}
+
+/// The cascade, counting which stage decided. Exact in any floating-point
+/// environment of the caller.
+template <class Recipe, int D>
+Sign filtered(const Point_refs<D, Recipe::arity>& p) {
+  double computed = std::numeric_limits<double>::quiet_NaN();  // NaN: the filter left its domain
+  if (auto s = filter<Recipe, D>(p, &computed)) {
+    count(Recipe::stats().filter);
+    return *s;
+  }
+  return after_filter<Recipe, D>(p, computed);
 }
 
 }  // namespace dewall::kernel::stages

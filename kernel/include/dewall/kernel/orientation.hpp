@@ -21,7 +21,8 @@ namespace dewall::kernel {
 template <int D>
 using Orientation_points = Point_refs<D, D + 1>;
 
-/// The static filter alone: a proven sign, or nothing.
+/// The static filter alone: a proven sign, or nothing (in any floating-point
+/// environment of the caller: error_bounds.hpp).
 template <int D>
 std::optional<Sign> orientation_d_filter(const Orientation_points<D>& p);
 /// The interval stage alone.
@@ -31,7 +32,8 @@ std::optional<Sign> orientation_d_interval(const Orientation_points<D>& p);
 template <int D>
 Sign orientation_d_exact(const Orientation_points<D>& p);
 /// The filtered predicate: exact for every finite input, in any floating-point
-/// environment of the caller (Fp_environment_guard).
+/// environment of the caller (the filter needs none; the later stages run
+/// under an Fp_environment_guard).
 /// \pre every coordinate is finite. Cost: O(D·2^D) flops when the filter decides.
 template <int D>
 Sign orientation_d(const Orientation_points<D>& p);
@@ -72,7 +74,6 @@ struct Orientation_recipe {
 
 template <int D>
 std::optional<Sign> orientation_d_filter(const Orientation_points<D>& p) {
-  const Fp_environment_guard guard;
   return stages::filter<Orientation_recipe<D>, D>(p);
 }
 template <int D>
@@ -87,7 +88,6 @@ Sign orientation_d_exact(const Orientation_points<D>& p) {
 }
 template <int D>
 Sign orientation_d(const Orientation_points<D>& p) {
-  const Fp_environment_guard guard;
   return stages::filtered<Orientation_recipe<D>, D>(p);
 }
 

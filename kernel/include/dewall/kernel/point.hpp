@@ -2,8 +2,10 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 
 #include "dewall/kernel/sign.hpp"
 
@@ -30,14 +32,26 @@ struct Point_d {
 template <int D, int N>
 using Point_refs = std::array<const Point_d<D>*, N>;
 
+/// A key whose integer order is the numeric order of finite doubles, −0 and +0
+/// alike. Computed from the bits, so that it holds in any floating-point
+/// environment: with denormals-are-zero (DAZ) on, the hardware compares a
+/// subnormal as equal to 0 (floating_point.hpp).
+constexpr std::int64_t order_key(double v) {
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  if ((bits << 1) == 0) return 0;  // ±0
+  const auto magnitude = static_cast<std::int64_t>(bits & ~(std::uint64_t{1} << 63));
+  return bits >> 63 ? -magnitude : magnitude;
+}
+
 /// Lexicographic comparison of the coordinates (x, then y, ...), exact.
 /// This is the total order of CGAL's `compare_xyz` / `Compare_lexicographically_d`,
 /// which the symbolic perturbation is defined on.
 template <int D>
 constexpr Comparison_result compare_lexicographically(const Point_d<D>& a, const Point_d<D>& b) {
   for (int i = 0; i < D; ++i) {
-    if (a[i] < b[i]) return SMALLER;
-    if (a[i] > b[i]) return LARGER;
+    const std::int64_t x = order_key(a[i]), y = order_key(b[i]);
+    if (x < y) return SMALLER;
+    if (x > y) return LARGER;
   }
   return EQUAL;
 }

@@ -26,7 +26,8 @@ namespace dewall::kernel {
 template <int D>
 using Sphere_points = Point_refs<D, D + 2>;  // simplex, then the query
 
-/// The stages alone: the static filter, the interval stage, the exact stage.
+/// The stages alone: the static filter (valid in any floating-point
+/// environment), the interval stage, the exact stage.
 template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p);
 template <int D>
@@ -35,7 +36,7 @@ template <int D>
 Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p);
 
 /// The filtered, unperturbed predicate: may return ON_ORIENTED_BOUNDARY.
-/// Exact in any floating-point environment of the caller (Fp_environment_guard).
+/// Exact in any floating-point environment of the caller (as orientation_d).
 /// \pre every coordinate is finite.
 template <int D>
 Oriented_side side_of_oriented_sphere_d(const Sphere_points<D>& p);
@@ -92,7 +93,6 @@ struct Side_of_sphere_recipe {
 
 template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p) {
-  const Fp_environment_guard guard;
   return stages::filter<Side_of_sphere_recipe<D>, D>(p);
 }
 template <int D>
@@ -107,12 +107,10 @@ Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p) {
 }
 template <int D>
 Oriented_side side_of_oriented_sphere_d(const Sphere_points<D>& p) {
-  const Fp_environment_guard guard;
   return static_cast<Oriented_side>(stages::filtered<Side_of_sphere_recipe<D>, D>(p));
 }
 template <int D>
 Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
-  const Fp_environment_guard guard;
   const auto side = static_cast<Oriented_side>(stages::filtered<Side_of_sphere_recipe<D>, D>(p));
   if (side != ON_ORIENTED_BOUNDARY) return side;
   count(predicate_stats().side_of_sphere[D].perturbed);
