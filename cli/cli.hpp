@@ -34,12 +34,13 @@ long parse_long(const std::string& s, const char* what);
 /// the command then rejects with a message about its value).
 bool is_option(const std::string& a);
 
-/// Walks a command's arguments argv[2 …]: each option goes to
-/// `option(argument, i)`, which returns false for an option it does not know
-/// (a Usage_error then names it) and may consume a value with next_arg; every
-/// other argument, and every argument after "--", goes to `operand`.
-void parse_arguments(int argc, char** argv, const std::function<bool(const std::string&, int&)>& option,
-                     const std::function<void(const std::string&)>& operand);
+/// Walks a command's arguments argv[2 …] and returns its operands: each option
+/// goes to `option(argument, i)`, which returns false for an option it does
+/// not know (a Usage_error then names it) and may consume a value with
+/// next_arg; every other argument, and every argument after "--", is an
+/// operand. \throws Usage_error ("unexpected argument") past `max_operands`.
+std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
+                                         const std::function<bool(const std::string&, int&)>& option);
 
 /// How messages name an input path: "<stdin>" for "-", else the path made
 /// printable (io/quote.hpp).

@@ -94,15 +94,22 @@ bool is_option(const std::string& a) {
   return a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])) && a[1] != '.';
 }
 
-void parse_arguments(int argc, char** argv, const std::function<bool(const std::string&, int&)>& option,
-                     const std::function<void(const std::string&)>& operand) {
+std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
+                                         const std::function<bool(const std::string&, int&)>& option) {
+  std::vector<std::string> operands;
   bool options_ended = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
-    if (options_ended || !is_option(a)) operand(a);
-    else if (a == "--") options_ended = true;
-    else if (!option(a, i)) throw Usage_error("unknown option " + io::quoted(a));
+    if (!options_ended && is_option(a)) {
+      if (a == "--") options_ended = true;
+      else if (!option(a, i)) throw Usage_error("unknown option " + io::quoted(a));
+    } else if (operands.size() == max_operands) {
+      throw Usage_error("unexpected argument " + io::quoted(a));
+    } else {
+      operands.push_back(a);
+    }
   }
+  return operands;
 }
 
 std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::printable(path); }

@@ -14,19 +14,17 @@ namespace dewall::cli {
 namespace {
 
 int command_certify(int argc, char** argv) {
-  std::vector<std::string> files;
   bool canonical = false, json = false;
   certify::Options options;
-  parse_arguments(
-      argc, argv,
+  const auto files = parse_arguments(
+      argc, argv, 2,
       [&](const std::string& a, int&) {
         if (a == "--canonical") canonical = true;
         else if (a == "--all") options.all = true;
         else if (a == "--json") json = true;
         else return false;
         return true;
-      },
-      [&](const std::string& a) { files.push_back(a); });
+      });
   if (files.size() != 2) throw Usage_error("certify needs POINTS and SIMPLICES ('-' = standard input for one of them)");
   if (files[0] == "-" && files[1] == "-") throw Usage_error("only one of POINTS and SIMPLICES can be standard input");
   const auto points = io::read_points_file(files[0]);

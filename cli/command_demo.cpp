@@ -17,7 +17,7 @@ int command_demo(int argc, char** argv) {
   io::Point_kind kind = io::Point_kind::uniform;
   unsigned long long seed = std::random_device{}();
   parse_arguments(
-      argc, argv,
+      argc, argv, 0,
       [&](const std::string& a, int& i) {
         if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
         else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
@@ -29,8 +29,7 @@ int command_demo(int argc, char** argv) {
           kind = *k;
         } else return false;
         return true;
-      },
-      [](const std::string& a) { throw Usage_error("unexpected argument " + io::quoted(a)); });
+      });
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
   check_fits_in_memory(static_cast<std::size_t>(n), dim);
   std::printf("dewall demo: %ld %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim, seed);

@@ -132,9 +132,8 @@ int command_draw(int argc, char** argv) {
   std::string output = "-";
   bool walls = false, quiet = false;
   long width = 800;
-  std::vector<std::string> operands;
-  parse_arguments(
-      argc, argv,
+  const auto operands = parse_arguments(
+      argc, argv, 2,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--walls") walls = true;
@@ -142,10 +141,6 @@ int command_draw(int argc, char** argv) {
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
-      },
-      [&](const std::string& a) {
-        if (operands.size() == 2) throw Usage_error("unexpected argument " + io::quoted(a));
-        operands.push_back(a);
       });
   if (operands.empty()) throw Usage_error("draw needs a POINTS file");
   const std::string points_path = operands[0], simplices_path = operands.size() > 1 ? operands[1] : "";

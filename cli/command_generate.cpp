@@ -43,9 +43,8 @@ int command_generate(int argc, char** argv) {
   long dim = 3;
   std::uint64_t seed = 0;
   bool seeded = false, quiet = false;
-  std::vector<std::string> operands;
-  parse_arguments(
-      argc, argv,
+  const auto operands = parse_arguments(
+      argc, argv, 2,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
@@ -53,10 +52,6 @@ int command_generate(int argc, char** argv) {
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
-      },
-      [&](const std::string& a) {
-        if (operands.size() == 2) throw Usage_error("unexpected argument " + io::quoted(a));
-        operands.push_back(a);
       });
   if (operands.size() != 2) throw Usage_error("generate needs a KIND and a point count N");
   const auto kind = io::parse_point_kind(operands[0]);

@@ -10,12 +10,11 @@
 namespace dewall::cli {
 
 int command_triangulate(int argc, char** argv) {
-  std::string input, output = "-";
+  std::string output = "-";
   std::string engine = "dewall";
   bool stats = false, quiet = false;
-  bool have_input = false;
-  parse_arguments(
-      argc, argv,
+  const auto operands = parse_arguments(
+      argc, argv, 1,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--engine") engine = next_arg(i, argc, argv);
@@ -23,12 +22,9 @@ int command_triangulate(int argc, char** argv) {
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
-      },
-      [&](const std::string& a) {
-        if (have_input) throw Usage_error("unexpected argument " + io::quoted(a));
-        input = a, have_input = true;
       });
-  if (!have_input) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
+  if (operands.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
+  const std::string& input = operands[0];
   if (engine != "dewall" && engine != "cgal")
     throw Usage_error("unknown engine " + io::quoted(engine) + " (dewall or cgal)");
   io::Progress progress(!quiet && io::stderr_is_terminal());
