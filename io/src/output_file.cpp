@@ -9,11 +9,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
+#include <random>
 #include <ostream>
 #include <vector>
 
 #include <fcntl.h>
-#include <pthread.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -121,24 +121,6 @@ void install_cleanup_handlers() {
     }
   });
 }
-
-/// Blocks the cleanup signals for its lifetime, so that creating a temporary
-/// and arming its slot happen as one step for the handler.
-class Signals_blocked {
- public:
-  Signals_blocked() {
-    sigset_t set;
-    sigemptyset(&set);
-    for (int s : cleanup_signals) sigaddset(&set, s);
-    pthread_sigmask(SIG_BLOCK, &set, &old_);
-  }
-  ~Signals_blocked() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
-  Signals_blocked(const Signals_blocked&) = delete;
-  Signals_blocked& operator=(const Signals_blocked&) = delete;
-
- private:
-  sigset_t old_;
-};
 
 /// Arms a slot for `path`; -1 when none is free (the file is then still
 /// removed on errors, only not on a signal).
@@ -260,21 +242,28 @@ struct Output_file::Impl {
     target = t.path;
     if (t.exists && ::faccessat(AT_FDCWD, t.path.c_str(), W_OK, AT_EACCESS) != 0)
       throw failure(name, "cannot write", errno);
+    // Created exclusively (O_EXCL: never through a planted link) under an
+    // unpredictable name, like mkstemp; the slot is armed before the file
+    // exists, so no signal can come between the two and leave it behind.
     // The basename is shortened so that the temporary's name fits NAME_MAX.
-    const std::string base = t.path.substr(directory_of(t.path).size());
-    std::string pattern = directory_of(t.path) + "." + base.substr(0, 200) + ".tmp.XXXXXX";
+    const std::string directory = directory_of(t.path);
+    const std::string stem = directory + "." + t.path.substr(directory.size(), 200) + ".tmp.";
     install_cleanup_handlers();
-    {
-      const Signals_blocked blocked;
-      fd = ::mkostemp(pattern.data(), O_CLOEXEC);
-      if (fd < 0) {
-        const std::string directory = directory_of(t.path).empty() ? "." : directory_of(t.path);
-        throw failure(name, "cannot create a temporary file in " + printable(directory), errno);
-      }
-      temporary = pattern;
+    std::random_device random;
+    for (int attempt = 0; fd < 0; ++attempt) {
+      char suffix[20];
+      std::snprintf(suffix, sizeof suffix, "%08x%08x", random(), random());
+      temporary = stem + suffix;
       slot = arm_temporary(temporary);
+      fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+      if (fd >= 0) break;
+      const int error = errno;
+      disarm_temporary(slot);
+      temporary.clear();
+      if (error != EEXIST || attempt == 100)
+        throw failure(name, "cannot create a temporary file in " + printable(directory.empty() ? "." : directory), error);
     }
-    // mkstemp creates mode 0600: give the file the old file's mode (and owner
+    // Created with mode 0600: give the file the old file's mode (and owner
     // where permitted), or what a new file gets under the umask.
     mode_t mode = 0666 & ~current_umask();
     if (t.exists) {

@@ -194,10 +194,11 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
         xyz.push_back(detail::parse_double(token, name, line_no));
       }
     }
-    bool more = xyz.size() == n;
-    while (more && (more = next_line()) && split(line).empty()) {
+    if (xyz.size() == n) {
+      bool more = next_line();
+      while (more && split(line).empty()) more = next_line();
+      if (more && detail::is_number(split(line).front())) throw too_many();
     }
-    if (more && detail::is_number(split(line).front())) throw too_many();
     if (xyz.size() != n)
       throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + std::to_string(count) +
                         " points (" + std::to_string(n) + " coordinates), the file has " +

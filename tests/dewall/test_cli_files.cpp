@@ -259,6 +259,9 @@ TEST_CASE("files: inputs that cannot seek (pipes, FIFOs, /dev/stdin) are read in
     CHECK(fifo.status == 0);
     CHECK(fifo.out == expected.out);
   }
+  const auto substituted = cli.shell("bash -c '$DEWALL triangulate <(cat q.txt)'");  // a /dev/fd/N pipe
+  CHECK(substituted.status == 0);
+  CHECK(substituted.out == expected.out);
   const auto certify = cli.shell("rm -f fin && mkfifo fin && (cat q.txt > fin &) && cat s.txt | $DEWALL certify fin /dev/stdin");
   CHECK(certify.status == 0);
   CHECK(certify.out.find("delaunay canonical") != std::string::npos);

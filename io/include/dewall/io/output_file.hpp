@@ -9,7 +9,7 @@
 //    /proc/self/fd/N): opened and written directly, in place. There is
 //    nothing to be atomic about; a failed run may have written part of its output.
 //  * A regular file or a new name: written to a temporary file created
-//    exclusively (O_EXCL, unpredictable name: mkstemp) in the target's
+//    exclusively (O_EXCL, a random 64-bit name, as mkstemp) in the target's
 //    directory, fsync'ed, renamed over the target, and the directory fsync'ed.
 //    A reader sees the old file or the complete new one, never a part, even
 //    after a crash. The old file's permission bits are kept (and its owner and
