@@ -9,12 +9,14 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <fcntl.h>
 #include <poll.h>
@@ -171,7 +173,7 @@ TEST_CASE("files: a symlink is written through, a dangling one creates its targe
   CHECK(slurp(cli.path("created.txt")) == square_simplices);
 }
 
-TEST_CASE("files: a regular file keeps its mode; a hard link keeps the old contents", "[cli][files]") {
+TEST_CASE("files: a regular file keeps its mode, a hard link keeps the old contents", "[cli][files]") {
   const auto cli = fresh("files_test_mode");
   cli.write("secret.txt", "old\n");
   REQUIRE(::chmod(cli.path("secret.txt").c_str(), 0600) == 0);
@@ -295,7 +297,7 @@ TEST_CASE("files: writing to a full device is exit 2 with a write error, for eve
   CHECK(S_ISCHR(mode_of(cli.path("full"))));
 }
 
-TEST_CASE("files: hostile tokens are escaped and cut in messages; a BOM is skipped", "[cli][files]") {
+TEST_CASE("files: hostile tokens are escaped and cut in messages, a BOM is skipped", "[cli][files]") {
   const auto cli = fresh("files_test_tokens");
   SECTION("escape sequences") {
     const auto r = cli.with_stdin("triangulate -", "0 0\n1 0\n\x1b[2J\x1b]0;owned\x07 1\n");
@@ -386,7 +388,7 @@ TEST_CASE("files: certify --json stays valid UTF-8 with a file name that is not"
   CHECK(r.out.rfind("{\"delaunay\":false", 0) == 0);
 }
 
-TEST_CASE("files: no arguments is a usage error; -- ends the options", "[cli][files]") {
+TEST_CASE("files: no arguments is a usage error, -- ends the options", "[cli][files]") {
   const auto cli = fresh("files_test_arguments");
   const auto none = cli("");
   CHECK(none.status == 2);
