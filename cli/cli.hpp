@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -12,6 +13,7 @@
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/certify/report.hpp"
+#include "dewall/error.hpp"
 #include "dewall/kernel/point_array.hpp"
 #include "dewall/options.hpp"
 
@@ -26,6 +28,32 @@ struct Usage_error : std::runtime_error {
 std::string next_arg(int& i, int argc, char** argv);
 /// A non-negative integer argument. \throws Usage_error otherwise.
 long parse_long(const std::string& s, const char* what);
+
+/// True when argument `a` is an option: it starts with '-' and is neither "-"
+/// (standard input or output) nor a negative number ("-1" is an operand, which
+/// the command then rejects with a message about its value).
+bool is_option(const std::string& a);
+
+/// Walks a command's arguments argv[2 …] and returns its operands: each option
+/// goes to `option(argument, i)`, which returns false for an option it does
+/// not know (a Usage_error then names it) and may consume a value with
+/// next_arg; every other argument, and every argument after "--", is an
+/// operand. \throws Usage_error ("unexpected argument") past `max_operands`.
+std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
+                                         const std::function<bool(const std::string&, int&)>& option);
+
+/// How messages name an input path: "<stdin>" for "-", else the path made
+/// printable (io/quote.hpp).
+std::string input_name(const std::string& path);
+
+/// Prints "dewall: NAME: MESSAGE" for points that cannot be triangulated, the
+/// offending point numbered as in the file (TetGen's may count from 1), and
+/// returns the exit status 1.
+int report_invalid_input(const std::string& name, const Invalid_input& e, std::size_t first_index);
+
+/// \throws Usage_error when `n` points of `dimension` coordinates would not fit
+/// in this machine's memory (before a generator tries to allocate them).
+void check_fits_in_memory(std::size_t n, long dimension);
 
 /// A triangulation as the CLI handles it.
 struct Run {

@@ -1,11 +1,16 @@
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <span>
 #include <vector>
 
+#include <unistd.h>
+
 #include "cli.hpp"
 #include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
+#include "dewall/io/quote.hpp"
 
 namespace dewall::cli {
 namespace {
@@ -78,9 +83,60 @@ std::string next_arg(int& i, int argc, char** argv) {
 
 long parse_long(const std::string& s, const char* what) {
   char* end = nullptr;
+  errno = 0;
   const long v = std::strtol(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || v < 0) throw Usage_error(std::string("invalid ") + what + ": '" + s + "'");
+  if (s.empty() || *end != '\0' || v < 0 || errno == ERANGE)
+    throw Usage_error(std::string("invalid ") + what + ": " + io::quoted(s));
   return v;
+}
+
+bool is_option(const std::string& a) {
+  return a.size() > 1 && a[0] == '-' && !std::isdigit(static_cast<unsigned char>(a[1])) && a[1] != '.';
+}
+
+std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
+                                         const std::function<bool(const std::string&, int&)>& option) {
+  std::vector<std::string> operands;
+  bool options_ended = false;
+  for (int i = 2; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (!options_ended && is_option(a)) {
+      if (a == "--") options_ended = true;
+      else if (!option(a, i)) throw Usage_error("unknown option " + io::quoted(a));
+    } else if (operands.size() == max_operands) {
+      throw Usage_error("unexpected argument " + io::quoted(a));
+    } else {
+      operands.push_back(a);
+    }
+  }
+  return operands;
+}
+
+std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::printable(path); }
+
+int report_invalid_input(const std::string& name, const Invalid_input& e, std::size_t first_index) {
+  std::string message = e.what();
+  if (const auto index = e.point_index(); index != Invalid_input::npos) {
+    // The library names the point zero-based in its message ("point 4 has …"):
+    // renumber it as the file counts rather than naming it twice.
+    const std::string library = "point " + std::to_string(index) + " ";
+    const std::string file = "point " + std::to_string(index + first_index);
+    message = message.rfind(library, 0) == 0 ? file + message.substr(library.size() - 1) : file + ": " + message;
+  }
+  std::fprintf(stderr, "dewall: %s: %s\n", name.c_str(), message.c_str());
+  return 1;
+}
+
+void check_fits_in_memory(std::size_t n, long dimension) {
+  const double bytes = static_cast<double>(n) * static_cast<double>(dimension) * sizeof(double);
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  const double memory = static_cast<double>(pages) * static_cast<double>(page_size);
+  if (pages > 0 && page_size > 0 && bytes > memory) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%zu points in E^%ld need %.1f GB for their coordinates alone; this machine has %.1f GB",
+                  n, dimension, bytes / 1e9, memory / 1e9);
+    throw std::runtime_error(text);
+  }
 }
 
 }  // namespace dewall::cli

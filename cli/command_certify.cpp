@@ -6,42 +6,30 @@
 
 #include "cli.hpp"
 #include "dewall/certify/certify.hpp"
+#include "dewall/io/quote.hpp"
 #include "dewall/io/simplex_reader.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 
 namespace dewall::cli {
 namespace {
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else out += c;
-  }
-  return out + "\"";
-}
-
 int command_certify(int argc, char** argv) {
-  std::vector<std::string> files;
   bool canonical = false, json = false;
   certify::Options options;
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--canonical") canonical = true;
-    else if (a == "--all") options.all = true;
-    else if (a == "--json") json = true;
-    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
-    else files.push_back(a);
-  }
+  const auto files = parse_arguments(
+      argc, argv, 2,
+      [&](const std::string& a, int&) {
+        if (a == "--canonical") canonical = true;
+        else if (a == "--all") options.all = true;
+        else if (a == "--json") json = true;
+        else return false;
+        return true;
+      });
   if (files.size() != 2) throw Usage_error("certify needs POINTS and SIMPLICES ('-' = standard input for one of them)");
   if (files[0] == "-" && files[1] == "-") throw Usage_error("only one of POINTS and SIMPLICES can be standard input");
   const auto points = io::read_points_file(files[0]);
   const auto list = io::read_simplices_file(files[1], points.dimension, points.first_index);
-  const std::string& sname = files[1] == "-" ? std::string("<stdin>") : files[1];
+  const std::string sname = input_name(files[1]), pname = input_name(files[0]);
 
   const auto start = std::chrono::steady_clock::now();
   const certify::Report report = certify_any(points, list.table, options);
@@ -69,12 +57,12 @@ int command_certify(int argc, char** argv) {
                       ",\"interior_facets\":" + std::to_string(report.interior_facets) +
                       ",\"boundary_facets\":" + std::to_string(report.boundary_facets) +
                       ",\"cospherical_facets\":" + std::to_string(report.cospherical_facets) +
-                      ",\"format\":" + json_string(list.format) + ",\"seconds\":" + std::to_string(seconds) +
+                      ",\"format\":" + io::json_string(list.format) + ",\"seconds\":" + std::to_string(seconds) +
                       ",\"violations\":[";
     for (std::size_t i = 0; i < report.violations.size(); ++i) {
       const auto v = shifted(report.violations[i]);
       out += i ? "," : "";
-      out += "{\"rule\":" + json_string(certify::rule_name(v.rule)) + ",\"fatal\":" + (v.fatal() ? "true" : "false");
+      out += "{\"rule\":" + io::json_string(certify::rule_name(v.rule)) + ",\"fatal\":" + (v.fatal() ? "true" : "false");
       if (v.simplex != certify::npos)
         out += ",\"simplex\":" + std::to_string(v.simplex + shift) + ",\"line\":" + std::to_string(list.lines[v.simplex]);
       if (v.other_simplex != certify::npos)
@@ -89,7 +77,7 @@ int command_certify(int argc, char** argv) {
         out += "]";
       }
       if (v.point != certify::npos) out += ",\"point\":" + std::to_string(v.point);
-      out += ",\"message\":" + json_string(certify::describe(v, name)) + "}";
+      out += ",\"message\":" + io::json_string(certify::describe(v, name)) + "}";
     }
     out += "]}\n";
     std::fputs(out.c_str(), stdout);
@@ -100,12 +88,12 @@ int command_certify(int argc, char** argv) {
                            " points (" + std::to_string(report.distinct_points) + " distinct)";
   if (report.canonical) {
     std::printf("delaunay canonical: %s is the canonical Delaunay triangulation of %s (%s)\n", sname.c_str(),
-                files[0].c_str(), what.c_str());
+                pname.c_str(), what.c_str());
   } else if (report.delaunay) {
     std::printf("delaunay not-canonical: %s is a Delaunay triangulation of %s but not the canonical one (%s)\n",
-                sname.c_str(), files[0].c_str(), what.c_str());
+                sname.c_str(), pname.c_str(), what.c_str());
   } else {
-    std::printf("not delaunay: %s is not a Delaunay triangulation of %s: %s\n", sname.c_str(), files[0].c_str(),
+    std::printf("not delaunay: %s is not a Delaunay triangulation of %s: %s\n", sname.c_str(), pname.c_str(),
                 certify::describe(shifted(*report.first_fatal()), name).c_str());
   }
   if (!report.delaunay && list.format == "qhull" && report.first_fatal()->rule == certify::Rule::index_out_of_range)

@@ -8,6 +8,7 @@
 #include "dewall/certify/certify.hpp"
 #include "dewall/error.hpp"
 #include "dewall/io/point_generators.hpp"
+#include "dewall/io/quote.hpp"
 
 namespace dewall::cli {
 
@@ -15,27 +16,29 @@ int command_demo(int argc, char** argv) {
   long n = 100000, dim = 3;
   io::Point_kind kind = io::Point_kind::uniform;
   unsigned long long seed = std::random_device{}();
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
-    else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
-    else if (a == "--seed") seed = static_cast<unsigned long long>(parse_long(next_arg(i, argc, argv), "seed"));
-    else if (a == "--kind") {
-      const std::string name = next_arg(i, argc, argv);
-      const auto k = io::parse_point_kind(name);
-      if (!k) throw Usage_error("unknown kind '" + name + "' (" + io::point_kind_names() + ")");
-      kind = *k;
-    } else throw Usage_error("unknown option '" + a + "'");
-  }
+  parse_arguments(
+      argc, argv, 0,
+      [&](const std::string& a, int& i) {
+        if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+        else if (a == "--seed") seed = static_cast<unsigned long long>(parse_long(next_arg(i, argc, argv), "seed"));
+        else if (a == "--kind") {
+          const std::string name = next_arg(i, argc, argv);
+          const auto k = io::parse_point_kind(name);
+          if (!k) throw Usage_error("unknown kind " + io::quoted(name) + " (" + io::point_kind_names() + ")");
+          kind = *k;
+        } else return false;
+        return true;
+      });
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
+  check_fits_in_memory(static_cast<std::size_t>(n), dim);
   std::printf("dewall demo: %ld %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim, seed);
   const io::Point_table table = io::generate_points(kind, static_cast<std::size_t>(n), static_cast<int>(dim), seed);
   Run run;
   try {
     run = triangulate_any(table);
   } catch (const Invalid_input& e) {
-    std::fprintf(stderr, "dewall: %s\n", e.what());
-    return 1;
+    return report_invalid_input("demo", e, 0);
   }
   print_stats(stdout, run);
   std::printf("triangulated %zu points into %zu simplices in %.3f s\n", run.stats.distinct_points,

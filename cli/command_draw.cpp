@@ -11,13 +11,16 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <ostream>
 #include <span>
 #include <stdexcept>
 #include <vector>
 
 #include "cli.hpp"
 #include "dewall/dewall.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/quote.hpp"
 #include "dewall/io/simplex_reader.hpp"
 
 namespace dewall::cli {
@@ -29,7 +32,7 @@ using Triangle = std::array<std::uint32_t, 3>;
 /// .ele: io/simplex_reader.hpp), each index checked against the point count.
 std::vector<Triangle> read_triangles(const std::string& path, const io::Point_table& table) {
   const auto list = io::read_simplices_file(path, 2, table.first_index);
-  const std::string name = path == "-" ? "<stdin>" : path;
+  const std::string name = input_name(path);
   std::vector<Triangle> triangles(list.table.size());
   for (std::size_t r = 0; r < triangles.size(); ++r)
     for (std::size_t i = 0; i < 3; ++i) {
@@ -66,13 +69,16 @@ void write_svg(std::ostream& out, const io::Point_table& table, const std::vecto
     x0 = std::min(x0, c[2 * i]), x1 = std::max(x1, c[2 * i]);
     y0 = std::min(y0, c[2 * i + 1]), y1 = std::max(y1, c[2 * i + 1]);
   }
+  // Differences are taken between halves: x1 - x0 overflows to infinity for
+  // coordinates near ±1e308 (and infinity · 0 is NaN), x1/2 - x0/2 never does.
+  const auto half_offset = [](double v, double low) { return v * 0.5 - low * 0.5; };
   const double margin = 10, legend = walls ? 24 : 0;
-  const double span = std::max({x1 - x0, y1 - y0, 1e-300});
-  const double scale = (width - 2 * margin) / span;
-  const double height = std::ceil((y1 - y0) * scale + 2 * margin + legend);
+  const double half_span = std::max({half_offset(x1, x0), half_offset(y1, y0), 1e-300});
+  const double scale = (width - 2 * margin) / half_span;  // pixels per half unit
+  const double height = std::ceil(half_offset(y1, y0) * scale + 2 * margin + legend);
   // SVG's y axis points down: flip so the picture is the usual way up.
-  auto px = [&](std::uint32_t i) { return margin + (c[2 * i] - x0) * scale; };
-  auto py = [&](std::uint32_t i) { return height - margin - (c[2 * i + 1] - y0) * scale; };
+  auto px = [&](std::uint32_t i) { return margin + half_offset(c[2 * i], x0) * scale; };
+  auto py = [&](std::uint32_t i) { return height - margin - half_offset(c[2 * i + 1], y0) * scale; };
   char buffer[256];
   std::snprintf(buffer, sizeof buffer,
                 "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%d\" height=\"%.0f\" viewBox=\"0 0 %d %.0f\">\n",
@@ -123,21 +129,21 @@ void write_svg(std::ostream& out, const io::Point_table& table, const std::vecto
 }  // namespace
 
 int command_draw(int argc, char** argv) {
-  std::string points_path, simplices_path, output = "-";
+  std::string output = "-";
   bool walls = false, quiet = false;
   long width = 800;
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
-    else if (a == "--walls") walls = true;
-    else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "width");
-    else if (a == "--quiet" || a == "-q") quiet = true;
-    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
-    else if (points_path.empty()) points_path = a;
-    else if (simplices_path.empty()) simplices_path = a;
-    else throw Usage_error("unexpected argument '" + a + "'");
-  }
-  if (points_path.empty()) throw Usage_error("draw needs a POINTS file");
+  const auto operands = parse_arguments(
+      argc, argv, 2,
+      [&](const std::string& a, int& i) {
+        if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+        else if (a == "--walls") walls = true;
+        else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "width");
+        else if (a == "--quiet" || a == "-q") quiet = true;
+        else return false;
+        return true;
+      });
+  if (operands.empty()) throw Usage_error("draw needs a POINTS file");
+  const std::string points_path = operands[0], simplices_path = operands.size() > 1 ? operands[1] : "";
   if (!walls && simplices_path.empty()) throw Usage_error("draw needs a SIMPLICES file (or --walls)");
   if (width < 100 || width > 100000) throw Usage_error("--width must be 100 to 100000 pixels");
   if (points_path == "-" && simplices_path == "-" && !walls)
@@ -145,10 +151,17 @@ int command_draw(int argc, char** argv) {
 
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
-  const std::string points_name = points_path == "-" ? "<stdin>" : points_path;
   if (table.dimension != 2)
-    throw std::runtime_error("draw pictures 2D triangulations only; " + points_name + " holds points of dimension " +
-                             std::to_string(table.dimension));
+    throw std::runtime_error("draw pictures 2D triangulations only; " + input_name(points_path) +
+                             " holds points of dimension " + std::to_string(table.dimension));
+  // A picture needs finite coordinates (with --walls the triangulator would refuse them too).
+  for (std::size_t i = 0; i < table.coordinates.size(); ++i)
+    if (!std::isfinite(table.coordinates[i]))
+      return report_invalid_input(input_name(points_path),
+                                  Invalid_input("point " + std::to_string(i / 2) +
+                                                    " has a non-finite coordinate (NaN or infinity)",
+                                                i / 2),
+                                  table.first_index);
 
   std::vector<Triangle> triangles;
   std::vector<int> levels;
@@ -160,8 +173,7 @@ int command_draw(int argc, char** argv) {
       progress.finish();
     } catch (const Invalid_input& e) {
       progress.finish();
-      std::fprintf(stderr, "dewall: %s: %s\n", points_path.c_str(), e.what());
-      return 1;
+      return report_invalid_input(input_name(points_path), e, table.first_index);
     }
     if (simplices_path.empty() || simplices_path == "-") {
       for (const auto& [t, level] : built) triangles.push_back(t), levels.push_back(level);
@@ -181,13 +193,13 @@ int command_draw(int argc, char** argv) {
       if (unmatched)
         std::fprintf(stderr,
                      "dewall draw: %zu of %zu triangles of %s are not in the canonical triangulation (drawn grey)\n",
-                     unmatched, triangles.size(), simplices_path.c_str());
+                     unmatched, triangles.size(), input_name(simplices_path).c_str());
     }
   } else {
     triangles = read_triangles(simplices_path, table);
   }
-  if (output != "-") progress.phase("writing " + output);  // no progress line inside the SVG on a terminal
-  io::write_file_atomically(output, [&](std::ostream& out) {
+  if (output != "-") progress.phase("writing " + io::printable(output));  // no progress line inside the SVG on a terminal
+  io::write_output_file(output, [&](std::ostream& out) {
     write_svg(out, table, triangles, levels, static_cast<int>(width), walls);
   });
   progress.finish();

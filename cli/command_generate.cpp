@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <random>
 #include <stdexcept>
+#include <vector>
 
 #include "cli.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/quote.hpp"
 
 namespace dewall::cli {
 namespace {
@@ -21,7 +23,7 @@ std::size_t parse_count(const std::string& s) {
   const double v = std::strtod(s.c_str(), &end);
   if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0) || v != std::floor(v) || v > 1e12 ||
       s.find_first_of("xXpP") != std::string::npos)  // no hexadecimal
-    throw Usage_error("invalid point count '" + s + "' (a whole number such as 1000 or 1e6)");
+    throw Usage_error("invalid point count " + io::quoted(s) + " (a whole number such as 1000 or 1e6)");
   return static_cast<std::size_t>(v);
 }
 
@@ -30,33 +32,33 @@ std::uint64_t parse_seed(const std::string& s) {
   errno = 0;
   const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
   if (s.empty() || *end != '\0' || errno == ERANGE || s[0] == '-' || s[0] == '+')
-    throw Usage_error("invalid seed '" + s + "' (an integer from 0 to 2^64 - 1)");
+    throw Usage_error("invalid seed " + io::quoted(s) + " (an integer from 0 to 2^64 - 1)");
   return v;
 }
 
 }  // namespace
 
 int command_generate(int argc, char** argv) {
-  std::string kind_name, count, output = "-";
+  std::string output = "-";
   long dim = 3;
   std::uint64_t seed = 0;
   bool seeded = false, quiet = false;
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
-    else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
-    else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
-    else if (a == "--quiet" || a == "-q") quiet = true;
-    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
-    else if (kind_name.empty()) kind_name = a;
-    else if (count.empty()) count = a;
-    else throw Usage_error("unexpected argument '" + a + "'");
-  }
-  if (kind_name.empty() || count.empty()) throw Usage_error("generate needs a KIND and a point count N");
-  const auto kind = io::parse_point_kind(kind_name);
-  if (!kind) throw Usage_error("unknown kind '" + kind_name + "' (one of " + io::point_kind_names() + ")");
-  const std::size_t n = parse_count(count);
+  const auto operands = parse_arguments(
+      argc, argv, 2,
+      [&](const std::string& a, int& i) {
+        if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+        else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
+        else if (a == "--quiet" || a == "-q") quiet = true;
+        else return false;
+        return true;
+      });
+  if (operands.size() != 2) throw Usage_error("generate needs a KIND and a point count N");
+  const auto kind = io::parse_point_kind(operands[0]);
+  if (!kind) throw Usage_error("unknown kind " + io::quoted(operands[0]) + " (one of " + io::point_kind_names() + ")");
+  const std::size_t n = parse_count(operands[1]);
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6, not " + std::to_string(dim));
+  check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
   if (!seeded) {

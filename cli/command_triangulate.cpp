@@ -4,32 +4,34 @@
 #include "cli.hpp"
 #include "dewall/error.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/quote.hpp"
 #include "dewall/io/vtk.hpp"
 
 namespace dewall::cli {
 
 int command_triangulate(int argc, char** argv) {
-  std::string input, output = "-";
+  std::string output = "-";
   std::string engine = "dewall";
   bool stats = false, quiet = false;
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
-    else if (a == "--engine") engine = next_arg(i, argc, argv);
-    else if (a == "--stats") stats = true;
-    else if (a == "--quiet" || a == "-q") quiet = true;
-    else if (a.size() > 1 && a[0] == '-') throw Usage_error("unknown option '" + a + "'");
-    else if (input.empty()) input = a;
-    else throw Usage_error("unexpected argument '" + a + "'");
-  }
-  if (input.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
-  if (engine != "dewall" && engine != "cgal") throw Usage_error("unknown engine '" + engine + "' (dewall or cgal)");
+  const auto operands = parse_arguments(
+      argc, argv, 1,
+      [&](const std::string& a, int& i) {
+        if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
+        else if (a == "--engine") engine = next_arg(i, argc, argv);
+        else if (a == "--stats") stats = true;
+        else if (a == "--quiet" || a == "-q") quiet = true;
+        else return false;
+        return true;
+      });
+  if (operands.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
+  const std::string& input = operands[0];
+  if (engine != "dewall" && engine != "cgal")
+    throw Usage_error("unknown engine " + io::quoted(engine) + " (dewall or cgal)");
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
-  const std::string input_name = input == "-" ? "<stdin>" : input;
   if (io::is_vtk_path(output) && table.dimension > 3)
-    throw io::Vtk_unsupported(output + ": VTK output supports 2D and 3D only; " + input_name +
+    throw io::Vtk_unsupported(io::printable(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
                               " holds points of dimension " + std::to_string(table.dimension) +
                               " (write a plain simplex list instead)");
   Run run;
@@ -39,12 +41,7 @@ int command_triangulate(int argc, char** argv) {
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();
-    const auto index = e.point_index();
-    if (index != Invalid_input::npos)
-      std::fprintf(stderr, "dewall: %s: point %zu: %s\n", input.c_str(), index + table.first_index, e.what());
-    else
-      std::fprintf(stderr, "dewall: %s: %s\n", input.c_str(), e.what());
-    return 1;
+    return report_invalid_input(input_name(input), e, table.first_index);
   }
   io::write_triangulation_file(output, table, run.simplices, &progress);
   progress.finish();

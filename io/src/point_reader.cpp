@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <fstream>
-#include <iostream>
-#include <sstream>
+#include <optional>
+#include <string_view>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/input_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/vtk.hpp"
 #include "text_lines.hpp"
@@ -19,129 +19,138 @@ namespace {
 
 using detail::where;
 
-/// Splits a line into its numbers (comments removed). Throws on a token that
-/// is not a complete decimal number; NaN and infinity are accepted here and
-/// rejected by the triangulator with the point's index.
+/// Splits a line into its numbers (comments removed). \throws Parse_error on a
+/// token that is not a complete decimal number.
 std::vector<double> parse_numbers(std::string_view line, const std::string& name, std::size_t line_no) {
   std::vector<double> values;
-  detail::for_each_token(detail::without_comment(line), [&](std::string_view token_view) {
-    const std::string token(token_view);
-    char* end = nullptr;
-    errno = 0;
-    const double v = std::strtod(token.c_str(), &end);
-    if (end != token.c_str() + token.size())
-      throw Parse_error(where(name, line_no) + "'" + token + "' is not a number");
-    if (errno == ERANGE && std::isinf(v))
-      throw Parse_error(where(name, line_no) + "'" + token + "' is out of the range of double");
-    values.push_back(v);
-  });
+  detail::for_each_token(detail::without_comment(line),
+                         [&](std::string_view token) { values.push_back(detail::parse_double(token, name, line_no)); });
   return values;
 }
 
 bool is_count(double v) { return v >= 0 && v == std::floor(v) && v < 1e15; }
 
-void check_dimension(int d, const std::string& name, std::size_t line_no) {
-  if (d < 2 || d > 6)
-    throw Parse_error(where(name, line_no) + "dimension " + std::to_string(d) + " is not supported (2 to 6)");
+/// \throws Parse_error unless `d` is a whole number from 2 to 6; `shown` is how
+/// the message writes it.
+void check_dimension(double d, std::string_view shown, const std::string& name, std::size_t line_no) {
+  if (!(d >= 2 && d <= 6 && d == std::floor(d)))
+    throw Parse_error(where(name, line_no) + "dimension " + std::string(shown) + " is not supported (2 to 6)");
+}
+
+/// The next line holding data (blank and comment lines skipped), reporting
+/// the bytes read to `progress` now and then; false at the end.
+bool next_data_line(detail::Line_source& source, std::string& line, Progress* progress) {
+  while (source.next(line)) {
+    if (progress && (source.number() & 0xffff) == 0) progress->advance_to(source.bytes());
+    if (!detail::is_blank(line)) return true;
+  }
+  return false;
+}
+
+/// True when the first data line starts rbox's header rather than a point: a
+/// lone number (no point has one coordinate), or a number followed by rbox's
+/// command line ("3 rbox 1000 D3", without '#') when the next line is a lone count.
+bool is_rbox_header(const std::vector<std::string_view>& first, std::string_view second) {
+  if (first.empty() || !detail::is_number(first[0])) return false;
+  if (first.size() == 1) return true;
+  std::size_t second_tokens = 0;
+  detail::for_each_token(detail::without_comment(second), [&](std::string_view) { ++second_tokens; });
+  return !detail::is_number(first[1]) && second_tokens == 1;
+}
+
+std::vector<std::string_view> tokens_of(std::string_view line) {
+  std::vector<std::string_view> tokens;
+  detail::for_each_token(detail::without_comment(line), [&](std::string_view token) { tokens.push_back(token); });
+  return tokens;
 }
 
 }  // namespace
 
-/// The leading integer of an rbox header line ("3 rbox 1000 D3": rbox appends
-/// its command line as a comment without '#'), or -1.
-static long rbox_leading_integer(const std::string& line) {
-  std::istringstream ss(line.substr(0, line.find('#')));
-  std::string token;
-  if (!(ss >> token)) return -1;
-  char* end = nullptr;
-  const long v = std::strtol(token.c_str(), &end, 10);
-  return end == token.c_str() + token.size() && v >= 0 ? v : -1;
-}
-
 Point_table read_points(std::istream& in, const std::string& name, Progress* progress) {
   Point_table t;
-  std::vector<std::pair<std::size_t, std::string>> lines;
-  {
-    std::string line;
-    std::size_t line_no = 0;
-    std::uint64_t bytes = 0;
-    while (std::getline(in, line)) {
-      ++line_no;
-      bytes += line.size() + 1;
-      if (progress && (line_no & 0xffff) == 0) progress->advance_to(bytes);
-      const auto content = line.substr(0, line.find('#'));
-      if (content.find_first_not_of(" \t\r\v\f") != std::string::npos) lines.emplace_back(line_no, line);
-    }
-  }
-  if (in.bad()) throw Parse_error(name + ": read error");
-  if (lines.empty()) throw Parse_error(name + ": no points");
-  std::size_t first = 0;
-  std::size_t expected_count = 0;
-  // rbox: a dimension (maybe followed by a comment), a lone count, then the rows.
-  const bool rbox = lines.size() >= 2 && rbox_leading_integer(lines[0].second) >= 0 && [&] {
-    const auto second = parse_numbers(lines[1].second, name, lines[1].first);
-    return second.size() == 1 && is_count(second[0]) &&
-           (lines.size() == 2 || parse_numbers(lines[2].second, name, lines[2].first).size() ==
-                                     static_cast<std::size_t>(rbox_leading_integer(lines[0].second)));
-  }();
-  if (rbox) {
-    t.dimension = static_cast<int>(rbox_leading_integer(lines[0].second));
-    check_dimension(t.dimension, name, lines[0].first);
-    expected_count = static_cast<std::size_t>(parse_numbers(lines[1].second, name, lines[1].first)[0]);
-    first = 2;
+  detail::Line_source source(in);
+  std::string line, second;
+  if (!next_data_line(source, line, progress)) throw Parse_error(name + ": no points");
+  std::size_t line_no = source.number();
+  const auto first = tokens_of(line);
+  const bool have_second = next_data_line(source, second, progress);
+  const std::size_t second_no = source.number();
+  std::optional<std::size_t> expected_count;  // rbox's
+  if (is_rbox_header(first, have_second ? second : std::string_view())) {
+    // rbox: a dimension (maybe followed by rbox's command line), a lone count, then the rows.
+    const double dimension = detail::parse_double(first[0], name, line_no);
+    check_dimension(dimension, printable(first[0], 40), name, line_no);
+    t.dimension = static_cast<int>(dimension);
+    if (!have_second)
+      throw Parse_error(where(name, line_no) + "a lone dimension without rbox's count line (and no points)");
+    const auto count = parse_numbers(second, name, second_no);
+    if (count.size() != 1)
+      throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line");
+    if (!is_count(count[0]))
+      throw Parse_error(where(name, second_no) + "invalid point count " + quoted(tokens_of(second)[0]) +
+                        " (a non-negative integer)");
+    expected_count = static_cast<std::size_t>(count[0]);
+    if (!next_data_line(source, line, progress)) line.clear();
   } else {
-    t.dimension = static_cast<int>(parse_numbers(lines[0].second, name, lines[0].first).size());
-    check_dimension(t.dimension, name, lines[0].first);
+    const auto values = parse_numbers(line, name, line_no);
+    check_dimension(static_cast<double>(values.size()), std::to_string(values.size()), name, line_no);
+    t.dimension = static_cast<int>(values.size());
+    t.coordinates = values;
+    if (have_second) line.swap(second);
+    else line.clear();
   }
-  for (std::size_t r = first; r < lines.size(); ++r) {
-    const auto values = parse_numbers(lines[r].second, name, lines[r].first);
-    if (values.size() != static_cast<std::size_t>(t.dimension))
-      throw Parse_error(where(name, lines[r].first) + "expected " + std::to_string(t.dimension) +
-                        " coordinates, found " + std::to_string(values.size()));
+  const auto d = static_cast<std::size_t>(t.dimension);
+  // `line` holds the next row (empty at the end of the input).
+  while (!line.empty() && !(expected_count && t.size() == *expected_count)) {
+    line_no = source.number();
+    const auto values = parse_numbers(line, name, line_no);
+    if (values.size() != d)
+      throw Parse_error(where(name, line_no) + "expected " + std::to_string(d) + " coordinates, found " +
+                        std::to_string(values.size()));
     t.coordinates.insert(t.coordinates.end(), values.begin(), values.end());
+    if (!next_data_line(source, line, progress)) line.clear();
   }
-  if (rbox && t.size() != expected_count)
-    throw Parse_error(name + ": the header announces " + std::to_string(expected_count) + " points, the file has " +
-                      std::to_string(t.size()) + " (truncated?)");
+  if (expected_count) {
+    if (t.size() != *expected_count)
+      throw Parse_error(name + ": the header announces " + std::to_string(*expected_count) + " points, the file has " +
+                        std::to_string(t.size()) + " (truncated?)");
+    if (!line.empty())
+      throw Parse_error(where(name, source.number()) + "more rows than the header announces (" +
+                        std::to_string(*expected_count) + " points)");
+  }
   if (t.size() == 0) throw Parse_error(name + ": no points");
   return t;
 }
 
 Point_table read_node(std::istream& in, const std::string& name, Progress* progress) {
   Point_table t;
+  detail::Line_source source(in);
   std::string line;
-  std::size_t line_no = 0;
-  std::uint64_t bytes = 0;
   std::vector<double> header;
-  while (header.empty() && std::getline(in, line)) header = parse_numbers(line, name, ++line_no);
+  if (next_data_line(source, line, progress)) header = parse_numbers(line, name, source.number());
+  const std::size_t header_line = std::max<std::size_t>(source.number(), 1);
   // Every header value is checked to be a count before it is converted: a
   // double outside the target type's range has no defined conversion (fuzz_parse).
   if (header.size() < 2 || !std::all_of(header.begin(), header.begin() + std::min<std::size_t>(header.size(), 4), is_count))
-    throw Parse_error(where(name, line_no) + "expected a .node header '<count> <dimension> <#attributes> <markers>'");
+    throw Parse_error(where(name, header_line) + "expected a .node header '<count> <dimension> <#attributes> <markers>'");
   const auto count = static_cast<std::size_t>(header[0]);
-  if (header[1] > 6)
-    throw Parse_error(where(name, line_no) + "dimension " + std::to_string(static_cast<long long>(header[1])) +
-                      " is not supported (2 to 6)");
+  check_dimension(header[1], printable(tokens_of(line)[1], 40), name, header_line);
   t.dimension = static_cast<int>(header[1]);
-  check_dimension(t.dimension, name, line_no);
   const std::size_t attributes = header.size() > 2 ? static_cast<std::size_t>(header[2]) : 0;
   const std::size_t markers = header.size() > 3 ? static_cast<std::size_t>(header[3]) : 0;
   const std::size_t width = 1 + static_cast<std::size_t>(t.dimension) + attributes + markers;
   std::size_t read = 0;
-  while (read < count && std::getline(in, line)) {
-    bytes += line.size() + 1;
-    if (progress && (line_no & 0xffff) == 0) progress->advance_to(bytes);
-    const auto values = parse_numbers(line, name, ++line_no);
-    if (values.empty()) continue;
+  while (read < count && next_data_line(source, line, progress)) {
+    const std::size_t line_no = source.number();
+    const auto values = parse_numbers(line, name, line_no);
     if (values.size() != width)
       throw Parse_error(where(name, line_no) + "expected " + std::to_string(width) + " values, found " +
                         std::to_string(values.size()));
-    const double expected_index = read == 0 ? values[0] : static_cast<double>(t.first_index + read);
     if (read == 0) {
       if (values[0] != 0 && values[0] != 1) throw Parse_error(where(name, line_no) + "the first point index must be 0 or 1");
       t.first_index = static_cast<std::size_t>(values[0]);
-    } else if (values[0] != expected_index) {
-      throw Parse_error(where(name, line_no) + "point index " + std::to_string(values[0]) + " out of sequence");
+    } else if (values[0] != static_cast<double>(t.first_index + read)) {
+      throw Parse_error(where(name, line_no) + "point index " + quoted(tokens_of(line)[0]) + " out of sequence");
     }
     t.coordinates.insert(t.coordinates.end(), values.begin() + 1, values.begin() + 1 + t.dimension);
     ++read;
@@ -150,53 +159,23 @@ Point_table read_node(std::istream& in, const std::string& name, Progress* progr
     throw Parse_error(name + ": the header announces " + std::to_string(count) + " points, the file has " +
                       std::to_string(read) + " (truncated?)");
   if (count == 0) throw Parse_error(name + ": no points");
+  source.expect_no_more_rows(name, std::to_string(count) + " points");
   return t;
 }
 
 Point_table read_points_file(const std::string& path, Progress* progress) {
+  Input_file file(path);
+  const std::string& name = file.name();
+  // Sniffed from the first bytes, which stay in the stream for the parser.
+  if (file.prefix(4) == std::string_view(binary_points_magic, 4))
+    return read_binary_points(file.stream(), name, progress);
+  const auto head = file.prefix(256);
+  const bool vtk = is_vtk_header(std::string(head.substr(0, head.find_first_of("\r\n"))));
   const bool node = path.size() > 5 && path.compare(path.size() - 5, 5, ".node") == 0;
-  if (path == "-") {
-    const std::string name = "<stdin>";
-    if (progress) progress->phase("reading " + name);
-    Point_table t;
-    // A pipe cannot be rewound: the binary format is recognised by its first
-    // byte ('D' never starts a text point file that parses), and a possible VTK
-    // file (first byte '#') is read into memory so its first line can be examined.
-    const int first = std::cin.peek();
-    if (first == binary_points_magic[0]) {
-      t = read_binary_points(std::cin, name, progress);
-    } else if (first == '#') {
-      std::ostringstream all;
-      all << std::cin.rdbuf();
-      std::istringstream in(all.str());
-      std::string first_line;
-      std::getline(in, first_line);
-      in.seekg(0);
-      t = is_vtk_header(first_line) ? read_vtk_points(in, name) : read_points(in, name, progress);
-    } else {
-      t = read_points(std::cin, name, progress);
-    }
-    if (progress) progress->finish();
-    return t;
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Parse_error(path + ": cannot open file");
-  char magic[4] = {};
-  in.read(magic, 4);
-  const bool binary = in.gcount() == 4 && std::equal(magic, magic + 4, binary_points_magic);
-  in.clear();
-  in.seekg(0);
-  if (binary) return read_binary_points(in, path, progress);
-  std::string first_line;
-  std::getline(in, first_line);
-  in.clear();
-  in.seekg(0, std::ios::end);
-  const auto size = static_cast<std::uint64_t>(std::max<std::streamoff>(0, in.tellg()));
-  in.seekg(0);
-  Point_table t;
-  if (progress) progress->phase("reading " + path, size);
-  if (is_vtk_header(first_line)) t = read_vtk_points(in, path);
-  else t = node ? read_node(in, path, progress) : read_points(in, path, progress);
+  if (progress) progress->phase("reading " + name, file.size());
+  const Point_table t = vtk ? read_vtk_points(file.stream(), name)
+                        : node ? read_node(file.stream(), name, progress)
+                               : read_points(file.stream(), name, progress);
   if (progress) progress->finish();
   return t;
 }

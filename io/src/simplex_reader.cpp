@@ -2,10 +2,9 @@
 
 #include <cctype>
 #include <cstdint>
-#include <fstream>
-#include <iostream>
 #include <string_view>
 
+#include "dewall/io/input_file.hpp"
 #include "text_lines.hpp"
 
 namespace dewall::io {
@@ -21,9 +20,9 @@ std::vector<std::uint64_t> parse_indices(std::string_view line, const std::strin
     std::uint64_t v = 0;
     for (char c : token) {
       if (!std::isdigit(static_cast<unsigned char>(c)))
-        throw Parse_error(where(name, line_no) + "'" + std::string(token) + "' is not a vertex index (a non-negative integer)");
+        throw Parse_error(where(name, line_no) + quoted(token) + " is not a vertex index (a non-negative integer)");
       v = v * 10 + static_cast<std::uint64_t>(c - '0');
-      if (v > UINT32_MAX) throw Parse_error(where(name, line_no) + "'" + std::string(token) + "' is too large for a vertex index");
+      if (v > UINT32_MAX) throw Parse_error(where(name, line_no) + quoted(token) + " is too large for a vertex index");
     }
     values.push_back(v);
   });
@@ -55,11 +54,13 @@ Simplex_list read_simplices(std::istream& in, const std::string& name, int dimen
   list.format = "plain";
   list.table.vertices_per_simplex = dimension + 1;
   const auto k = static_cast<std::size_t>(dimension + 1);
+  detail::Line_source source(in);
   std::string line;
-  std::size_t line_no = 0, expected = 0;
+  std::size_t expected = 0;
   bool first = true;
-  while (std::getline(in, line)) {
-    const auto v = parse_indices(line, name, ++line_no);
+  while (source.next(line)) {
+    const std::size_t line_no = source.number();
+    const auto v = parse_indices(line, name, line_no);
     if (v.empty()) continue;
     if (first && v.size() == 1) {  // a lone count: Qhull's header (a plain row has D + 1 ≥ 3 values)
       list.format = "qhull";
@@ -77,7 +78,6 @@ Simplex_list read_simplices(std::istream& in, const std::string& name, int dimen
     }
     add_row(list, v, 0, 0, name, line_no);
   }
-  if (in.bad()) throw Parse_error(name + ": read error");
   if (list.format == "qhull" && list.table.size() != expected)
     throw Parse_error(name + ": the Qhull header announces " + std::to_string(expected) + " facets, the file has " +
                       std::to_string(list.table.size()) + " (truncated?)");
@@ -90,10 +90,11 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
   list.format = "tetgen";
   list.table.vertices_per_simplex = dimension + 1;
   const auto k = static_cast<std::size_t>(dimension + 1);
+  detail::Line_source source(in);
   std::string line;
-  std::size_t line_no = 0;
   std::vector<std::uint64_t> header;
-  while (header.empty() && std::getline(in, line)) header = parse_indices(line, name, ++line_no);
+  while (header.empty() && source.next(line)) header = parse_indices(line, name, source.number());
+  const std::size_t line_no = source.number();
   if (header.size() < 2)
     throw Parse_error(where(name, line_no) + "expected an .ele header '<count> <vertices per simplex> <#attributes>'");
   if (header[1] != k)
@@ -101,7 +102,8 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
                       " vertices per simplex; the points need " + std::to_string(k));
   const std::size_t count = static_cast<std::size_t>(header[0]);
   const std::size_t width = 1 + k + (header.size() > 2 ? static_cast<std::size_t>(header[2]) : 0);
-  while (list.table.size() < count && std::getline(in, line)) {
+  while (list.table.size() < count && source.next(line)) {
+    const std::size_t row_no = source.number();
     // Attributes may be real numbers: parse only the index and the vertices strictly.
     std::string prefix;
     std::size_t tokens = 0;
@@ -109,25 +111,24 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
       if (tokens < 1 + k) prefix += std::string(token) + " ";
       ++tokens;
     });
-    ++line_no;
     if (tokens == 0) continue;
     if (tokens != width)
-      throw Parse_error(where(name, line_no) + "expected " + std::to_string(width) + " values, found " + std::to_string(tokens));
-    const auto v = parse_indices(prefix, name, line_no);
-    add_row(list, v, 1, first_index, name, line_no);
+      throw Parse_error(where(name, row_no) + "expected " + std::to_string(width) + " values, found " + std::to_string(tokens));
+    const auto v = parse_indices(prefix, name, row_no);
+    add_row(list, v, 1, first_index, name, row_no);
   }
   if (list.table.size() != count)
     throw Parse_error(name + ": the header announces " + std::to_string(count) + " simplices, the file has " +
                       std::to_string(list.table.size()) + " (truncated?)");
+  source.expect_no_more_rows(name, std::to_string(count) + " simplices");
   return list;
 }
 
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
-  if (path == "-") return read_simplices(std::cin, "<stdin>", dimension);
+  Input_file file(path);
   const bool ele = path.size() > 4 && path.compare(path.size() - 4, 4, ".ele") == 0;
-  std::ifstream in(path);
-  if (!in) throw Parse_error(path + ": cannot open file");
-  return ele ? read_ele(in, path, dimension, first_index) : read_simplices(in, path, dimension);
+  return ele ? read_ele(file.stream(), file.name(), dimension, first_index)
+             : read_simplices(file.stream(), file.name(), dimension);
 }
 
 }  // namespace dewall::io

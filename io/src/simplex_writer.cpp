@@ -3,15 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
-#include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <stdexcept>
+#include <ostream>
 #include <unistd.h>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/quote.hpp"
 #include "dewall/io/vtk.hpp"
 
 namespace dewall::io {
@@ -28,6 +26,9 @@ bool has_extension(const std::string& path, const std::string& ext) {
 Progress* unless_terminal_output(const std::string& path, Progress* progress) {
   return path == "-" && ::isatty(STDOUT_FILENO) == 1 ? nullptr : progress;
 }
+
+/// How messages name an output path.
+std::string shown(const std::string& path) { return path == "-" ? std::string("<stdout>") : printable(path); }
 
 }  // namespace
 
@@ -56,46 +57,12 @@ void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_inde
   }
 }
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  if (path == "-") {
-    std::ios::sync_with_stdio(false);
-    write(std::cout);
-    std::cout.flush();
-    if (!std::cout) throw std::runtime_error("<stdout>: write error");
-    return;
-  }
-  const std::string temporary = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out) throw std::runtime_error(path + ": cannot create file");
-    try {
-      write(out);
-    } catch (...) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(temporary.c_str());
-      throw std::runtime_error(path + ": write error");
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::remove(temporary.c_str());
-    throw std::runtime_error(path + ": " + ec.message());
-  }
-}
-
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress) {
   progress = unless_terminal_output(path, progress);
   const bool ele = has_extension(path, ".ele");
-  if (progress) progress->phase("writing " + (path == "-" ? std::string("<stdout>") : path), ele ? 0 : t.size());
-  write_file_atomically(path, [&](std::ostream& out) {
+  if (progress) progress->phase("writing " + shown(path), ele ? 0 : t.size());
+  write_output_file(path, [&](std::ostream& out) {
     ele ? write_ele(out, t, first_index) : write_plain(out, t, progress);
   });
   if (progress) progress->finish();
@@ -108,9 +75,9 @@ void write_triangulation_file(const std::string& path, const Point_table& points
   progress = unless_terminal_output(path, progress);
   if (!is_vtk_path(path)) return write_simplices_file(path, t, points.first_index, progress);
   if (points.dimension != 2 && points.dimension != 3)  // refuse before creating anything
-    throw Vtk_unsupported(path + ": VTK output supports 2D and 3D only; these points are in dimension " +
+    throw Vtk_unsupported(shown(path) + ": VTK output supports 2D and 3D only; these points are in dimension " +
                           std::to_string(points.dimension) + " (write a plain simplex list instead)");
-  write_file_atomically(path, [&](std::ostream& out) { write_vtk_triangulation(out, points, t, progress); });
+  write_output_file(path, [&](std::ostream& out) { write_vtk_triangulation(out, points, t, progress); });
 }
 
 void write_points_text(std::ostream& out, const Point_table& t, Progress* progress) {
@@ -136,18 +103,17 @@ void write_points_text(std::ostream& out, const Point_table& t, Progress* progre
 
 void write_points_file(const std::string& path, const Point_table& t, Progress* progress) {
   progress = unless_terminal_output(path, progress);
-  const std::string shown = path == "-" ? std::string("<stdout>") : path;
   if (has_extension(path, ".dwpt")) {
-    if (progress) progress->phase("writing " + shown, binary_points_file_size(t.size(), t.dimension));
-    write_file_atomically(path, [&](std::ostream& out) { write_binary_points(out, t, progress); });
+    if (progress) progress->phase("writing " + shown(path), binary_points_file_size(t.size(), t.dimension));
+    write_output_file(path, [&](std::ostream& out) { write_binary_points(out, t, progress); });
   } else if (is_vtk_path(path)) {
     if (t.dimension != 2 && t.dimension != 3)
-      throw Vtk_unsupported(path + ": VTK output supports 2D and 3D only; these points are in dimension " +
+      throw Vtk_unsupported(shown(path) + ": VTK output supports 2D and 3D only; these points are in dimension " +
                             std::to_string(t.dimension));
-    write_file_atomically(path, [&](std::ostream& out) { write_vtk_points(out, t, progress); });
+    write_output_file(path, [&](std::ostream& out) { write_vtk_points(out, t, progress); });
   } else {
-    if (progress) progress->phase("writing " + shown, t.size());
-    write_file_atomically(path, [&](std::ostream& out) { write_points_text(out, t, progress); });
+    if (progress) progress->phase("writing " + shown(path), t.size());
+    write_output_file(path, [&](std::ostream& out) { write_points_text(out, t, progress); });
   }
   if (progress) progress->finish();
 }

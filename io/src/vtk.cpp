@@ -140,12 +140,12 @@ void write_vtk_points(std::ostream& out, const Point_table& points, Progress* pr
 }
 
 Point_table read_vtk_points(std::istream& in, const std::string& name) {
+  detail::Line_source source(in);
   std::string line;
   std::size_t line_no = 0;
   auto next_line = [&] {
-    if (!std::getline(in, line)) return false;
-    ++line_no;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (!source.next(line)) return false;
+    line_no = source.number();
     return true;
   };
   if (!next_line() || !is_vtk_header(line))
@@ -155,7 +155,7 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
   const auto encoding = split(line);
   const std::string mode = encoding.empty() ? "" : lower(encoding[0]);
   if (mode != "ascii" && mode != "binary")
-    throw Parse_error(where(name, line_no) + "expected ASCII or BINARY, found '" + line + "'");
+    throw Parse_error(where(name, line_no) + "expected ASCII or BINARY, found " + quoted(line));
 
   std::vector<std::string> tokens;
   bool found = false;
@@ -170,7 +170,7 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
   errno = 0;
   const unsigned long long count = std::strtoull(tokens[1].c_str(), &end, 10);
   if (*end != '\0' || errno == ERANGE || tokens[1][0] == '-' || count > (1ull << 40))
-    throw Parse_error(where(name, line_no) + "invalid point count '" + tokens[1] + "'");
+    throw Parse_error(where(name, line_no) + "invalid point count " + quoted(tokens[1]));
   if (count == 0) throw Parse_error(where(name, line_no) + "no points");
   const std::string type = lower(tokens[2]);
   const std::size_t n = static_cast<std::size_t>(count) * 3;
@@ -179,20 +179,25 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
   if (mode == "binary") {
     if (type == "double") read_big_endian<double>(in, n, xyz, name, count);
     else if (type == "float") read_big_endian<float>(in, n, xyz, name, count);
-    else throw Parse_error(where(name, line_no) + "binary POINTS of type '" + tokens[2] + "' are not supported (float, double)");
+    else throw Parse_error(where(name, line_no) + "binary POINTS of type " + quoted(tokens[2]) + " are not supported (float, double)");
   } else {
     xyz.reserve(std::min<std::size_t>(n, std::size_t{1} << 16));  // not trusting the count (f2e10cdf)
+    // The section ends with its last coordinate: more on that line, or a
+    // further line of numbers, means more points than the header announces.
+    const auto too_many = [&] {
+      return Parse_error(where(name, line_no) + "more coordinates than the POINTS header announces (" +
+                         std::to_string(count) + " points)");
+    };
     while (xyz.size() < n && next_line()) {
       for (const auto& token : split(line)) {
-        if (xyz.size() == n) break;
-        char* stop = nullptr;
-        errno = 0;
-        const double v = std::strtod(token.c_str(), &stop);
-        if (*stop != '\0') throw Parse_error(where(name, line_no) + "'" + token + "' is not a number");
-        if (errno == ERANGE && std::isinf(v))
-          throw Parse_error(where(name, line_no) + "'" + token + "' is out of the range of double");
-        xyz.push_back(v);
+        if (xyz.size() == n) throw too_many();
+        xyz.push_back(detail::parse_double(token, name, line_no));
       }
+    }
+    if (xyz.size() == n) {
+      bool more = next_line();
+      while (more && split(line).empty()) more = next_line();
+      if (more && detail::is_number(split(line).front())) throw too_many();
     }
     if (xyz.size() != n)
       throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + std::to_string(count) +

@@ -32,15 +32,26 @@ struct Cli_in_directory {
 
   /// `before` is a shell prefix, e.g. "cat FILE | "; without one standard input is empty.
   Cli_result operator()(const std::string& args, const std::string& before = "") const {
-    const std::string cmd = "cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args +
-                            " > out.txt 2> err.txt" + (before.empty() ? " < /dev/null" : "");
-    const int raw = std::system(cmd.c_str());
-    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
+    return run("cd " + dir + " && " + before + std::string(DEWALL_CLI_PATH) + " " + args + " > out.txt 2> err.txt" +
+               (before.empty() ? " < /dev/null" : ""));
   }
   /// With `text` as standard input (a regular file, so seekable).
   Cli_result with_stdin(const std::string& args, const std::string& text) const {
     write("stdin.txt", text);
     return (*this)(args, "< stdin.txt ");
+  }
+  /// Runs the shell `script` (its own redirections allowed) in the directory,
+  /// with $DEWALL naming the executable; what it leaves on standard output and
+  /// error is captured. The status is the script's.
+  Cli_result shell(const std::string& script) const {
+    write("script.sh", script + "\n");
+    return run("cd " + dir + " && DEWALL=" + std::string(DEWALL_CLI_PATH) + " sh script.sh > out.txt 2> err.txt < /dev/null");
+  }
+
+ private:
+  Cli_result run(const std::string& command) const {
+    const int raw = std::system(command.c_str());
+    return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, slurp(path("out.txt")), slurp(path("err.txt"))};
   }
 };
 

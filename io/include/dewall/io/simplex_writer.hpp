@@ -1,12 +1,13 @@
 // Writing files: simplices as the plain list (one simplex per line, zero-based
 // input indices separated by single spaces), TetGen .ele or legacy VTK (chosen
 // by extension), and point sets as plain text, binary (.dwpt) or VTK. Every file
-// is written to a temporary name and renamed when complete.
+// goes through io::Output_file (output_file.hpp): a regular file is written to
+// an exclusive temporary and renamed when complete; devices, FIFOs and
+// standard output are written directly.
 #pragma once
 
 #include <array>
 #include <cstdint>
-#include <functional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -32,9 +33,8 @@ void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress =
 /// vertex numbers shifted by `first_index` (the numbering of the .node file).
 void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_index);
 
-/// Writes to `path` ("-" = standard output) atomically: to a temporary file in
-/// the same directory, renamed over `path` only when complete.
-/// \throws std::runtime_error when the file cannot be written.
+/// Writes to `path` ("-" = standard output) through io::Output_file.
+/// \throws Write_error when the file cannot be written.
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress = nullptr);
 
@@ -51,14 +51,8 @@ bool is_vtk_path(const std::string& path);
 /// shortest form that reads back to the same double (the round trip is exact).
 void write_points_text(std::ostream& out, const Point_table& t, Progress* progress = nullptr);
 
-/// Writes points to `path` ("-" = standard output) atomically: the binary format
+/// Writes points to `path` ("-" = standard output) through io::Output_file: the binary format
 /// for ".dwpt", legacy VTK for ".vtk", plain text otherwise.
 void write_points_file(const std::string& path, const Point_table& t, Progress* progress = nullptr);
-
-/// Runs `write(stream)` on a temporary file next to `path` (opened in binary
-/// mode) and renames it over `path` when the stream is still good; standard
-/// output for "-". \throws std::runtime_error (naming `path`) when the file cannot
-/// be created or written; an exception from `write` removes the temporary file.
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace dewall::io
