@@ -59,10 +59,14 @@ int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repe
       cgal_cells = dt.number_of_finite_cells();
     }
   });
-  dewall::Options serial;
-  serial.parallel_depth = 0;
+  // DeWall forced (the subject), then the default engine (automatic), one thread each.
+  const dewall::Options serial{.parallel_depth = 0, .engine = dewall::Engine::dewall};
+  const dewall::Options parallel{.engine = dewall::Engine::dewall};
+  const dewall::Options automatic{.parallel_depth = 0};
+  dewall::Triangulation<D> automatic_result;
   const double t_serial = best_of(repeat, [&] { serial_result = dewall::triangulate<D>(points, serial); });
-  const double t_parallel = best_of(repeat, [&] { parallel_result = dewall::triangulate<D>(points); });
+  const double t_parallel = best_of(repeat, [&] { parallel_result = dewall::triangulate<D>(points, parallel); });
+  const double t_automatic = best_of(repeat, [&] { automatic_result = dewall::triangulate<D>(points, automatic); });
 
   std::printf("%s points in E^%d, n = %zu, seed = %llu, best of %d\n", dewall::io::point_kind_name(kind), D,
               points.size(), static_cast<unsigned long long>(seed), repeat);
@@ -73,13 +77,18 @@ int run(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed, int repe
               serial_result.simplices.size());
   std::printf("%-40s %10.3f %10.2f %12zu\n", "dewall (parallel recursion, TBB)", t_parallel, t_parallel / t_cgal,
               parallel_result.simplices.size());
+  const std::string automatic_name = std::string("default engine, 1 thread (built by ") +
+                                     dewall::engine_name(automatic_result.statistics.engine) + ")";
+  std::printf("%-40s %10.3f %10.2f %12zu\n", automatic_name.c_str(), t_automatic, t_automatic / t_cgal,
+              automatic_result.simplices.size());
   const auto reference = dewall::cgal::cgal_delaunay<D>(points);
   if (dewall::cgal::as_simplex_set<D>(serial_result.simplices) != reference ||
-      dewall::cgal::as_simplex_set<D>(parallel_result.simplices) != reference) {
+      dewall::cgal::as_simplex_set<D>(parallel_result.simplices) != reference ||
+      dewall::cgal::as_simplex_set<D>(automatic_result.simplices) != reference) {
     std::fprintf(stderr, "bench_dewall: dewall's simplices differ from CGAL's\n");
     return 1;
   }
-  std::printf("dewall's simplices (serial and parallel) are CGAL's\n");
+  std::printf("dewall's simplices (serial, parallel, default engine) are CGAL's\n");
   return 0;
 }
 

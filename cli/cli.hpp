@@ -62,14 +62,10 @@ struct Run {
   double seconds = 0;  // the triangulation alone
 };
 
-/// Triangulates a point table of any supported dimension.
+/// Triangulates a point table of any supported dimension with the engine of
+/// `options` (default: automatic).
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
-Run triangulate_any(const io::Point_table& table);
-
-/// The same with CGAL's own incremental construction (cli/engine_cgal.cpp):
-/// the same input checks, simplices positively oriented; only the counters
-/// input_points, distinct_points and simplices are set.
-Run triangulate_any_with_cgal(const io::Point_table& table);
+Run triangulate_any(const io::Point_table& table, const Options& options = {});
 
 /// Calls f(std::integral_constant<int, D>{}) for a dimension D = 2 … 6 known at
 /// run time. \throws Usage_error for any other dimension.

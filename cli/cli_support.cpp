@@ -16,14 +16,15 @@ namespace dewall::cli {
 namespace {
 
 template <int D>
-Run triangulate_table(const io::Point_table& table) {
+Run triangulate_table(const io::Point_table& table, const Options& options) {
   const auto points = kernel_points<D>(table);
   Run run;
   run.simplices.vertices_per_simplex = D + 1;
   const auto start = std::chrono::steady_clock::now();
   run.stats = triangulate_to<kernel::Filtered_kernel_d<D>>(
       std::span<const kernel::Point_d<D>>(points),
-      [&](const Simplex<D>& s) { run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end()); });
+      [&](const Simplex<D>& s) { run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end()); },
+      options);
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
@@ -44,8 +45,8 @@ certify::Report certify_any(const io::Point_table& points, const io::Simplex_tab
   return with_dimension(points.dimension, [&](auto d) { return certify_table<d()>(points, simplices, options); });
 }
 
-Run triangulate_any(const io::Point_table& table) {
-  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table); });
+Run triangulate_any(const io::Point_table& table, const Options& options) {
+  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table, options); });
 }
 
 void print_stats(std::FILE* out, const Run& run) {
@@ -53,10 +54,11 @@ void print_stats(std::FILE* out, const Run& run) {
   std::fprintf(out,
                "points=%zu distinct=%zu simplices=%zu first_wall_simplices=%zu recursion_depth=%zu\n"
                "grid_cells=%zu max_points_in_cell=%zu mean_cells_per_simplex=%.2f candidates_per_search=%.2f\n"
-               "build_s=%.6f\n",
+               "engine=%s searches_before_handover=%zu build_s=%.6f\n",
                s.input_points, s.distinct_points, s.simplices, s.first_wall_simplices, s.recursion_depth,
                s.grid_cells, s.max_points_in_cell, s.mean_cells_per_simplex(),
-               s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0, run.seconds);
+               s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0,
+               engine_name(s.engine), s.searches_before_handover, run.seconds);
 }
 
 namespace {

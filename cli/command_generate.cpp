@@ -92,10 +92,11 @@ const bool registered = register_command({"generate", command_generate,
     "      Writes a point set of E^D (D = 2 to 6, default 3): KIND is uniform (unit\n"
     "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
     "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
-    "      one sphere, about N, exactly cospherical) or planes (on 2 to 8 parallel\n"
-    "      hyperplanes). N may be written 1e6. The seed (default: random) is printed\n"
-    "      on stderr. FILE: plain text (default: standard output), binary when it\n"
-    "      ends in .dwpt, VTK when it ends in .vtk (2D and 3D).\n"});
+    "      one sphere, about N, exactly cospherical), planes (on 2 to 8 parallel\n"
+    "      hyperplanes) or torus (on a torus surface, like a scan). N may be\n"
+    "      written 1e6. The seed (default: random) is printed on stderr. FILE:\n"
+    "      plain text (default: standard output), binary when it ends in .dwpt,\n"
+    "      VTK when it ends in .vtk (2D and 3D).\n"});
 }  // namespace
 
 }  // namespace dewall::cli

@@ -1,4 +1,4 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine dewall|cgal] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|cgal] [--stats] [--quiet]
 #include <cstdio>
 
 #include "cli.hpp"
@@ -11,7 +11,7 @@ namespace dewall::cli {
 
 int command_triangulate(int argc, char** argv) {
   std::string output = "-";
-  std::string engine = "dewall";
+  std::string engine = "auto";
   bool stats = false, quiet = false;
   const auto operands = parse_arguments(
       argc, argv, 1,
@@ -25,8 +25,11 @@ int command_triangulate(int argc, char** argv) {
       });
   if (operands.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
   const std::string& input = operands[0];
-  if (engine != "dewall" && engine != "cgal")
-    throw Usage_error("unknown engine " + io::quoted(engine) + " (dewall or cgal)");
+  Options options;
+  if (engine == "auto") options.engine = Engine::automatic;
+  else if (engine == "dewall") options.engine = Engine::dewall;
+  else if (engine == "cgal") options.engine = Engine::cgal;
+  else throw Usage_error("unknown engine " + io::quoted(engine) + " (auto, dewall or cgal)");
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
@@ -37,7 +40,7 @@ int command_triangulate(int argc, char** argv) {
   Run run;
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");
-    run = engine == "cgal" ? triangulate_any_with_cgal(table) : triangulate_any(table);
+    run = triangulate_any(table, options);
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();
@@ -52,7 +55,7 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--engine dewall|cgal] [--stats] [--quiet]\n"
+    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|cgal] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -60,9 +63,12 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, legacy\n"
     "      VTK for ParaView when it ends in .vtk (2D and 3D).\n"
-    "      --engine cgal triangulates with CGAL's own incremental construction\n"
-    "      instead (same output format and input checks), to compare with.\n"
-    "      --stats prints the paper's Table 1 counters and build_s=SECONDS on stderr.\n"
+    "      --engine: the construction; the simplices are the same with each.\n"
+    "      auto (default) runs DeWall and hands over to CGAL's incremental\n"
+    "      construction when DeWall's searches prove too costly (points on or near\n"
+    "      one sphere, thin surfaces); dewall and cgal force one of them.\n"
+    "      --stats prints the paper's Table 1 counters, the engine that built the\n"
+    "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"
     "      --quiet turns it off.\n"});
 }  // namespace

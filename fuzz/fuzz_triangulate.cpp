@@ -143,7 +143,7 @@ void run(Byte_source& in) {
   dewall::Triangulation<D> t;
   bool rejected = false;
   try {
-    t = dewall::triangulate<D>(points);
+    t = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::dewall});
   } catch (const dewall::Invalid_input&) {
     rejected = true;
   }
@@ -187,11 +187,11 @@ void run(Byte_source& in) {
   }
 
   // Property 4: threads and input order change nothing.
-  const auto serial = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = 0});
+  const auto serial = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = 0, .engine = dewall::Engine::dewall});
   CHECK_ON(checker, serial.simplices == t.simplices);
   const std::vector<Point_d<D>> reversed(points.rbegin(), points.rend());
   std::vector<dewall::Simplex<D>> mapped;
-  for (auto s : dewall::triangulate<D>(reversed).simplices) {
+  for (auto s : dewall::triangulate<D>(reversed, dewall::Options{.engine = dewall::Engine::dewall}).simplices) {
     for (auto& v : s) v = first.at(reversed[v].x);
     mapped.push_back(s);
   }

@@ -4,15 +4,43 @@
 // compiles it (floating_point.hpp says why).
 #pragma once
 
+#include "cgal_engine.hpp"
+#include "dewall/detail/search_budget.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 
 namespace dewall::detail {
 
+/// The engine Options::engine names. The incremental engine's simplices get
+/// wall level 0 (it builds no walls).
 template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
                                 std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels) {
-  return triangulate_generic<kernel::Filtered_kernel_d<D>>({}, points, options, simplices, wall_levels);
+  using K = kernel::Filtered_kernel_d<D>;
+  const std::size_t simplices_before = simplices.size(), levels_before = wall_levels ? wall_levels->size() : 0;
+  const auto incremental = [&] {
+    simplices.resize(simplices_before);
+    const Statistics st = triangulate_with_cgal<D>(points, simplices);
+    if (wall_levels) wall_levels->resize(levels_before + st.simplices, 0);
+    return st;
+  };
+  switch (options.engine) {
+    case Engine::cgal:
+      return incremental();
+    case Engine::dewall:
+      return triangulate_generic<K>({}, points, options, simplices, wall_levels);
+    case Engine::automatic:
+      break;
+  }
+  Search_budget budget(options.handover_candidates_per_search);
+  try {
+    return triangulate_generic<K>({}, points, options, simplices, wall_levels, &budget);
+  } catch (const Search_budget_spent&) {
+    if (wall_levels) wall_levels->resize(levels_before);
+    Statistics st = incremental();
+    st.searches_before_handover = budget.searches();
+    return st;
+  }
 }
 
 }  // namespace dewall::detail

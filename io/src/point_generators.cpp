@@ -18,8 +18,8 @@ using Rng = std::mt19937_64;
 // doubles; GCC and Clang's 128-bit integers hold them exactly.
 __extension__ typedef __int128 Int128;
 
-constexpr std::array<const char*, 7> kind_names = {"uniform", "ball",           "sphere", "bubbles",
-                                                   "grid",    "lattice-sphere", "planes"};
+constexpr std::array<const char*, 8> kind_names = {"uniform", "ball",           "sphere", "bubbles",
+                                                   "grid",    "lattice-sphere", "planes", "torus"};
 
 /// A uniform double in [0, 1): the top 53 bits of one draw, scaled exactly.
 double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
@@ -76,6 +76,33 @@ void sphere(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
     const double r = std::sqrt(s);
     for (auto x : p) t.coordinates.push_back(x / r);
     tick(progress, i);
+  }
+}
+
+/// Uniform on the surface of a torus: the points at distance r = 0.3 from the
+/// circle of radius R = 1 in the plane of the first two axes (in 3D the usual
+/// torus; in 2D two circles). A direction u on the unit sphere of the other
+/// D − 1 dimensions (the radial one first) gives the point
+/// ((R + r·u_0)·cos θ, (R + r·u_0)·sin θ, r·u_1, …); keeping it with probability
+/// (R + r·u_0)/(R + r) makes the density uniform by area. Like a scanned
+/// surface, and unlike a sphere, most of its Delaunay balls are small.
+void torus(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+  constexpr double R = 1.0, r = 0.3, pi = 3.14159265358979323846;
+  const auto d = static_cast<std::size_t>(t.dimension);
+  std::vector<double> u(d - 1);
+  t.coordinates.reserve(n * d);
+  for (std::size_t i = 0; i < n;) {
+    double s = 0;
+    for (auto& x : u) x = normal(rng), s += x * x;
+    if (s < 1e-12) continue;
+    const double norm = std::sqrt(s);
+    for (auto& x : u) x /= norm;
+    if (uniform01(rng) * (R + r) > R + r * u[0]) continue;
+    const double theta = 2 * pi * uniform01(rng), radius = R + r * u[0];
+    t.coordinates.push_back(radius * std::cos(theta));
+    t.coordinates.push_back(radius * std::sin(theta));
+    for (std::size_t j = 1; j + 1 < d; ++j) t.coordinates.push_back(r * u[j]);
+    tick(progress, i++);
   }
 }
 
@@ -333,6 +360,7 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     case Point_kind::grid: grid(t, n); break;
     case Point_kind::lattice_sphere: dimension == 2 ? lattice_sphere_2(t, n) : lattice_sphere_high(t, n); break;
     case Point_kind::planes: planes(t, n, rng, progress); break;
+    case Point_kind::torus: torus(t, n, rng, progress); break;
   }
   if (progress) progress->finish();
   return t;

@@ -75,7 +75,7 @@ void expect_rejected(const std::vector<Point_d<D>>& p, const Cells<D>& t, const 
 
 template <int D>
 Cells<D> dewall_cells(const std::vector<Point_d<D>>& p) {
-  return dewall::triangulate<D>(p).simplices;
+  return dewall::triangulate<D>(p, dewall::Options{.engine = dewall::Engine::dewall}).simplices;
 }
 template <int D>
 Cells<D> cgal_cells(const std::vector<Point_d<D>>& p) {

@@ -20,7 +20,7 @@ template <int D>
 void check_equal_to_cgal(const std::vector<Point_d<D>>& points, std::uint64_t seed) {
   INFO("D = " << D << ", n = " << points.size() << ", seed = " << seed);
   const auto expected = test::cgal_delaunay<D>(points);
-  const auto ours = dewall::triangulate<D>(points);
+  const auto ours = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::dewall});
   CHECK(ours.simplices.size() == expected.size());  // each simplex emitted once
   CHECK(test::as_set<D>(ours.simplices) == expected);
 
@@ -31,7 +31,7 @@ void check_equal_to_cgal(const std::vector<Point_d<D>>& points, std::uint64_t se
   std::shuffle(perm.begin(), perm.end(), rng);
   std::vector<Point_d<D>> shuffled(points.size());
   for (std::size_t i = 0; i < perm.size(); ++i) shuffled[i] = points[perm[i]];
-  const auto again = dewall::triangulate<D>(shuffled);
+  const auto again = dewall::triangulate<D>(shuffled, dewall::Options{.engine = dewall::Engine::dewall});
   const auto expected_shuffled = test::cgal_delaunay<D>(shuffled);
   CHECK(test::as_set<D>(again.simplices) == expected_shuffled);
 }

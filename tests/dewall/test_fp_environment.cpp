@@ -144,7 +144,7 @@ TEMPLATE_TEST_CASE_SIG("triangulate and certify are exact under flush-to-zero an
   const auto expected = dewall::test::cgal_delaunay<D>(points);  // in the default environment
   const Hostile_environment hostile;
   for (int depth : {0, 6}) {  // serial, and parallel (worker threads have their own environment)
-    const auto t = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = depth});
+    const auto t = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = depth, .engine = dewall::Engine::dewall});
     CHECK(dewall::test::as_set<D>(t.simplices) == expected);
     const auto report = dewall::certify::certify<dewall::kernel::Filtered_kernel_d<D>>(points, t.simplices);
     CHECK(report.canonical);

@@ -22,9 +22,9 @@ namespace {
 
 constexpr Point_kind all_kinds[] = {Point_kind::uniform, Point_kind::ball,           Point_kind::sphere,
                                     Point_kind::bubbles, Point_kind::grid,           Point_kind::lattice_sphere,
-                                    Point_kind::planes};
-constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball, Point_kind::sphere,
-                                       Point_kind::bubbles, Point_kind::planes};
+                                    Point_kind::planes,  Point_kind::torus};
+constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball,   Point_kind::sphere,
+                                       Point_kind::bubbles, Point_kind::planes, Point_kind::torus};
 
 double coordinate(const Point_table& t, std::size_t i, int j) {
   return t.coordinates[i * static_cast<std::size_t>(t.dimension) + static_cast<std::size_t>(j)];
@@ -177,4 +177,24 @@ TEST_CASE("generators: bad arguments", "[generate]") {
   CHECK_THROWS_AS(generate_points(Point_kind::uniform, 100, 7, 0), std::invalid_argument);
   CHECK_THROWS_AS(generate_points(Point_kind::uniform, 100, 1, 0), std::invalid_argument);
   CHECK_THROWS_WITH(generate_points(Point_kind::ball, 3, 3, 0), Catch::Contains("at least 4 points"));
+}
+
+TEST_CASE("generators: torus points lie on the torus surface", "[generate]") {
+  for (int d = 2; d <= 6; ++d) {
+    INFO("dimension " << d);
+    const auto t = generate_points(Point_kind::torus, 500, d, 11);
+    REQUIRE(t.size() == 500);
+    double lowest = 1e300, highest = -1e300;  // x_0 over the set: the torus spans [−1.3, 1.3]
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      // Distance to the circle of radius 1 in the plane of the first two axes.
+      const double rho = std::hypot(coordinate(t, i, 0), coordinate(t, i, 1)) - 1.0;
+      double s = rho * rho;
+      for (int j = 2; j < d; ++j) s += coordinate(t, i, j) * coordinate(t, i, j);
+      CHECK(std::abs(std::sqrt(s) - 0.3) < 1e-12);
+      lowest = std::min(lowest, coordinate(t, i, 0));
+      highest = std::max(highest, coordinate(t, i, 0));
+    }
+    CHECK(lowest < -1.2);
+    CHECK(highest > 1.2);
+  }
 }

@@ -27,7 +27,7 @@ namespace {
 /// every point a vertex unless it duplicates an earlier one.
 template <int D>
 void check_delaunay_properties(const std::vector<Point_d<D>>& points) {
-  const auto t = dewall::triangulate<D>(points);
+  const auto t = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::dewall});
   REQUIRE(!t.simplices.empty());
   std::map<std::array<std::uint32_t, D>, int> facet_count;
   std::vector<bool> used(points.size(), false);
@@ -235,12 +235,12 @@ TEMPLATE_TEST_CASE_SIG("far from 1: scaling the input by 2^±600 changes nothing
   // predicate went to the exact stage (minutes instead of milliseconds).
   std::mt19937_64 rng(20261122);
   for (const auto& base : {dewall::test::lattice<D>(D == 4 ? 300 : 500), dewall::test::uniform<D>(400, rng)}) {
-    const auto reference = dewall::triangulate<D>(base);
+    const auto reference = dewall::triangulate<D>(base, dewall::Options{.engine = dewall::Engine::dewall});
     for (const double factor : {0x1p600, 0x1p-600}) {
       auto points = base;
       for (auto& p : points)
         for (int j = 0; j < D; ++j) p[j] *= factor;
-      const auto t = dewall::triangulate<D>(points);
+      const auto t = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::dewall});
       CHECK(t.simplices == reference.simplices);
       CHECK(t.statistics.grid_cells == reference.statistics.grid_cells);
       CHECK(t.statistics.cells_visited == reference.statistics.cells_visited);

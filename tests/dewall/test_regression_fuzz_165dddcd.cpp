@@ -18,6 +18,7 @@ TEST_CASE("regression fuzz 165dddcd: faces outliving their region's points", "[r
   for (int parallel : {0, 6}) {
     dewall::Options options;
     options.parallel_depth = parallel;
+    options.engine = dewall::Engine::dewall;
     const auto t = dewall::triangulate<2>(points, options);
     CHECK(dewall::test::as_set<2>(t.simplices) == dewall::test::cgal_delaunay<2>(points));
     CHECK(t.simplices.size() == dewall::test::cgal_delaunay<2>(points).size());

@@ -1,5 +1,5 @@
 // The CGAL reference of the tests: CGAL's own triangulation as sorted index
-// tuples (dewall/cgal/cgal_delaunay.hpp, shared with the CLI's --engine cgal).
+// tuples (dewall/cgal/cgal_delaunay.hpp).
 #pragma once
 
 #include "dewall/cgal/cgal_delaunay.hpp"

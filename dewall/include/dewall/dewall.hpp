@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <stdexcept>
 #include <type_traits>
 #include <vector>
 
@@ -57,8 +58,8 @@ Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, cons
 template <class>
 inline constexpr bool always_false = false;
 
-/// Runs the triangulation with kernel K: compiled for the project's kernel,
-/// here for any other.
+/// Runs the triangulation with kernel K: compiled for the project's kernel
+/// (with the choice of engine, Options::engine), here for any other (DeWall).
 template <kernel::DelaunayKernel K>
 Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
                              std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
@@ -75,6 +76,8 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
                   "your flags are.");
     return {};
 #else
+    if (options.engine == Engine::cgal)
+      throw std::invalid_argument("dewall: Engine::cgal needs the project's kernel (Filtered_kernel_d)");
     return triangulate_generic<K>(k, points, options, simplices, wall_levels);
 #endif
   }
@@ -89,9 +92,13 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
 /// (memory near the size of the walls) is future work. A sink callable as
 /// sink(simplex, level) also receives the recursion level of the wall that
 /// built the simplex (0: the first wall; the paper's Figures 2, 4, 5).
+/// When the incremental engine built them (Options::engine, Statistics::engine)
+/// the order is CGAL's and every level is 0.
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D.
-/// Complexity: expected O(n log n) on uniformly distributed points.
+/// Complexity: expected O(n log n) on uniformly distributed points; with
+/// Engine::automatic (the default) at most a small multiple of the incremental
+/// construction's on any input.
 template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {

@@ -5,12 +5,43 @@
 
 namespace dewall {
 
+/// Which construction builds the triangulation. Each gives the same simplices
+/// (the Delaunay triangulation under CGAL's symbolic perturbation); only the
+/// time and the statistics differ.
+enum class Engine {
+  /// DeWall, handing over to the incremental construction when its searches
+  /// prove the input is one no gift-wrapping search is fast on (points on or
+  /// near one sphere, thin surfaces): see Options::handover_candidates_per_search.
+  automatic,
+  /// DeWall only.
+  dewall,
+  /// CGAL's incremental construction only (Delaunay_triangulation_2/_3, the dD
+  /// Delaunay_triangulation), compiled into the library.
+  cgal,
+};
+
+/// "automatic", "dewall" or "cgal".
+constexpr const char* engine_name(Engine e) {
+  return e == Engine::automatic ? "automatic" : e == Engine::dewall ? "dewall" : "cgal";
+}
+
 struct Options {
   /// Grid cells per point (the paper uses about one).
   double cells_per_point = 1.0;
   /// Recursion levels whose two halves run as parallel tasks (TBB): up to
   /// 2^parallel_depth tasks. 0 runs serially. The output is the same either way.
   int parallel_depth = 6;
+  /// The construction. Engines other than DeWall need the project's kernel
+  /// (Filtered_kernel_d); with another kernel, automatic means DeWall.
+  Engine engine = Engine::automatic;
+  /// Engine::automatic hands over to the incremental construction once DeWall's
+  /// searches have examined more than this many candidate points per search on
+  /// average (counted from the first search, with an allowance of 64 searches'
+  /// worth, so one costly search near the hull does not decide). A search must
+  /// look at every point near the sphere it proves empty: on volumes and
+  /// clusters that is tens of points (3D uniform 11, bubbles 38, grid 57); on a
+  /// sphere, a torus tube or a scanned surface it is thousands, and grows with n.
+  double handover_candidates_per_search = 250;
 };
 
 /// Counters for the paper's Table 1, filled by triangulate.
@@ -25,6 +56,8 @@ struct Statistics {
   std::size_t candidates_tested = 0;   // points examined by all searches
   std::size_t grid_cells = 0;
   std::size_t max_points_in_cell = 0;
+  Engine engine = Engine::dewall;            // the construction that built the output
+  std::size_t searches_before_handover = 0;  // automatic: DeWall's searches before handing over
   double mean_cells_per_simplex() const { return simplices ? double(cells_visited) / double(simplices) : 0.0; }
 };
 

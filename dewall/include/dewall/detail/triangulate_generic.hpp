@@ -21,11 +21,12 @@ namespace dewall::detail {
 /// Appends the Delaunay simplices of `points` (input indices, positively
 /// oriented, in DeWall's depth-first order) to `simplices`, and the recursion
 /// level of the wall that built each one to `wall_levels` when it is given.
-/// \throws Invalid_input (see dewall::triangulate_to).
+/// `budget`, when given, is charged by every search.
+/// \throws Invalid_input (see dewall::triangulate_to); Search_budget_spent.
 template <class K>
 Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> points, const Options& options,
                                std::vector<std::array<std::uint32_t, K::dimension + 1>>& simplices,
-                               std::vector<std::uint8_t>* wall_levels) {
+                               std::vector<std::uint8_t>* wall_levels, Search_budget* budget = nullptr) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
   const std::vector<std::size_t> input = distinct_points<K>(k, points);
@@ -34,7 +35,7 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   const Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
   require_full_dimension<D>(ps.coords_for_checks());
 
-  Wall_builder<K> builder(ps, options.parallel_depth);
+  Wall_builder<K> builder(ps, options.parallel_depth, budget);
   std::vector<Index> all(ps.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
   std::vector<Built_simplex<D>> built;

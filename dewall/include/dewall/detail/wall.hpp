@@ -52,12 +52,14 @@ class Wall_builder {
 
  public:
   /// parallel_depth: recursion levels whose two subproblems run as parallel
-  /// tasks (0: serial).
-  Wall_builder(const Point_set<K>& ps, int parallel_depth) : ps_(ps), parallel_depth_(parallel_depth) {}
+  /// tasks (0: serial). budget: charged by every search, when given.
+  Wall_builder(const Point_set<K>& ps, int parallel_depth, Search_budget* budget = nullptr)
+      : ps_(ps), parallel_depth_(parallel_depth), budget_(budget) {}
 
   /// Appends the simplices of the triangulation of `points` to `out`.
+  /// \throws Search_budget_spent when the budget is spent.
   void run(std::span<Index> points, std::vector<Built_simplex<D>>& out) {
-    Simplex_search<K> search(ps_);
+    Simplex_search<K> search(ps_, budget_);
     Wall_stats stats;
     recurse(points, Active_face_list<D>{}, 0, true, out, search, stats);
     merge(search.stats(), stats);
@@ -128,7 +130,7 @@ class Wall_builder {
       auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Built_simplex<D>>& o) {
         // A worker thread has its own floating-point environment (floating_point.hpp).
         const kernel::Fp_environment_guard guard;
-        Simplex_search<K> s(ps_);
+        Simplex_search<K> s(ps_, budget_);
         Wall_stats st;
         recurse(p, std::move(a), depth + 1, false, o, s, st);
         merge(s.stats(), st);
@@ -154,6 +156,7 @@ class Wall_builder {
 
   const Point_set<K>& ps_;
   int parallel_depth_;
+  Search_budget* budget_;
   std::mutex mutex_;
   Wall_stats stats_;
   Search_stats search_stats_;

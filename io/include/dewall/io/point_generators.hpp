@@ -31,10 +31,11 @@ enum class Point_kind {
   grid,            ///< the integer lattice {0 … k−1}^D, k^D ≈ N (every point ties)
   lattice_sphere,  ///< all integer points with |p|² = m, m chosen for about N points (exactly cospherical)
   planes,          ///< points on a few hyperplanes x_{D−1} = const (exactly coplanar per plane)
+  torus,           ///< uniform on a torus surface (R = 1, r = 0.3), like a scanned object's surface
 };
 
 /// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
-/// "lattice-sphere", "planes"), or nothing.
+/// "lattice-sphere", "planes", "torus"), or nothing.
 std::optional<Point_kind> parse_point_kind(std::string_view name);
 /// The name of `kind`, as parse_point_kind accepts it.
 const char* point_kind_name(Point_kind kind);

@@ -1,0 +1,114 @@
+// The engines (dewall/options.hpp): DeWall, the incremental construction
+// compiled into the library (CGAL's), and the automatic choice between them
+// give the same simplices; the automatic engine hands over on points on a
+// sphere and not on volume data; Statistics says which engine built the output.
+#include <catch2/catch.hpp>
+
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "dewall/dewall.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "dewall/kernel/point_array.hpp"
+#include "support/cgal_reference.hpp"
+
+namespace {
+
+using dewall::Engine;
+using dewall::Options;
+
+template <int D>
+std::vector<dewall::kernel::Point_d<D>> generated(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed) {
+  return dewall::kernel::points_from_coordinates<D>(dewall::io::generate_points(kind, n, D, seed).coordinates);
+}
+
+/// Every simplex positively oriented (the incremental engine reorients CGAL's cells).
+template <int D>
+bool positively_oriented(const std::vector<dewall::kernel::Point_d<D>>& points,
+                         const std::vector<dewall::Simplex<D>>& simplices) {
+  for (const auto& s : simplices) {
+    std::array<const dewall::kernel::Point_d<D>*, D + 1> p;
+    for (int i = 0; i <= D; ++i) p[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
+    if (dewall::kernel::orientation_d<D>(p) != dewall::kernel::POSITIVE) return false;
+  }
+  return true;
+}
+
+/// Runs every engine on `points`: each must give CGAL's simplices, positively
+/// oriented; returns the engine the automatic choice used.
+template <int D>
+Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points) {
+  const auto expected = dewall::test::cgal_delaunay<D>(points);
+  const auto forced = dewall::triangulate<D>(points, Options{.engine = Engine::dewall});
+  const auto incremental = dewall::triangulate<D>(points, Options{.engine = Engine::cgal});
+  const auto automatic = dewall::triangulate<D>(points);
+  CHECK(dewall::test::as_set<D>(forced.simplices) == expected);
+  CHECK(dewall::test::as_set<D>(incremental.simplices) == expected);
+  CHECK(dewall::test::as_set<D>(automatic.simplices) == expected);
+  CHECK(incremental.simplices.size() == expected.size());
+  CHECK(automatic.simplices.size() == expected.size());
+  CHECK(positively_oriented<D>(points, incremental.simplices));
+  CHECK(forced.statistics.engine == Engine::dewall);
+  CHECK(incremental.statistics.engine == Engine::cgal);
+  CHECK(incremental.statistics.distinct_points == forced.statistics.distinct_points);
+  return automatic.statistics.engine;
+}
+
+}  // namespace
+
+TEST_CASE("engines: points on a sphere hand over to the incremental construction", "[engine]") {
+  // Every search examines about half the points: DeWall is quadratic here.
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 1200, 5)) == Engine::cgal);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 1200, 0)) == Engine::cgal);
+  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6)) == Engine::cgal);
+}
+
+TEST_CASE("engines: volume data stays with DeWall", "[engine]") {
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::uniform, 3000, 7)) == Engine::dewall);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::bubbles, 3000, 8)) == Engine::dewall);
+  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::uniform, 3000, 9)) == Engine::dewall);
+}
+
+TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[engine]") {
+  std::mt19937_64 rng(10);
+  std::uniform_int_distribution<int> coordinate(0, 3);
+  std::vector<dewall::kernel::Point_d<4>> p4(300);
+  for (auto& p : p4)
+    for (int j = 0; j < 4; ++j) p[j] = coordinate(rng);  // a lattice: duplicates and ties
+  check_engines<4>(p4);
+  check_engines<5>(generated<5>(dewall::io::Point_kind::uniform, 200, 11));
+}
+
+TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") {
+  const auto points = generated<3>(dewall::io::Point_kind::uniform, 2000, 12);
+  // A budget below what any search needs hands over at once, after the
+  // 64-search allowance at most.
+  const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5});
+  CHECK(t.statistics.engine == Engine::cgal);
+  CHECK(t.statistics.searches_before_handover >= 1);
+  CHECK(t.statistics.searches_before_handover <= 200);
+  CHECK(dewall::test::as_set<3>(t.simplices) == dewall::test::cgal_delaunay<3>(points));
+  // Wall levels: 0 for the incremental engine's simplices.
+  int highest = -1;
+  dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(
+      std::span<const dewall::kernel::Point_d<3>>(points),
+      [&](const dewall::Simplex<3>&, int level) { highest = std::max(highest, level); },
+      Options{.engine = Engine::cgal});
+  CHECK(highest == 0);
+  // Bad input is reported the same way by every engine.
+  const std::vector<dewall::kernel::Point_d<3>> flat{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, 1, 0}}};
+  CHECK_THROWS_AS(dewall::triangulate<3>(flat, Options{.engine = Engine::cgal}), dewall::Invalid_input);
+  CHECK_THROWS_AS(dewall::triangulate<3>(flat), dewall::Invalid_input);
+}
+
+TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {
+  struct User_kernel : dewall::kernel::Filtered_kernel_d<2> {};
+  const std::vector<dewall::kernel::Point_d<2>> points{{{0, 0}}, {{1, 0}}, {{0, 1}}};
+  CHECK_THROWS_AS(dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points),
+                                                   Options{.engine = Engine::cgal}),
+                  std::invalid_argument);
+  // automatic means DeWall with another kernel
+  CHECK(dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points)).statistics.engine ==
+        Engine::dewall);
+}
