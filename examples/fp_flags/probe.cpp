@@ -23,6 +23,10 @@
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 
+#if defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
+
 namespace {
 
 template <int D>
@@ -170,6 +174,17 @@ bool check_predicate() {
 
 }  // namespace
 
+/// What the process's floating-point environment is at start: a program linked
+/// with -ffast-math, -Ofast or -funsafe-math-optimizations starts with
+/// flush-to-zero and denormals-are-zero on (crtfastmath.o), which is what the
+/// libraries must withstand (run.cmake checks the line).
+void report_environment() {
+#if defined(__x86_64__)
+  const unsigned csr = _mm_getcsr();
+  std::printf("environment at start: FTZ/DAZ %s\n", (csr & 0x8040u) == 0x8040u ? "on" : "off");
+#endif
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: probe write|check DIR\n");
@@ -181,6 +196,7 @@ int main(int argc, char** argv) {
     for (const auto& s : sets) std::printf("%s\n", s.name);  // the list run.cmake iterates over
     return 0;
   }
+  report_environment();
   bool ok = check_predicate();
   for (const auto& s : sets) ok &= s.dimension == 2 ? check_set<2>(dir, s.name) : check_set<3>(dir, s.name);
   std::printf("%s\n", ok ? "all equal to CGAL" : "FAILED");

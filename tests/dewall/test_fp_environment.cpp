@@ -80,7 +80,11 @@ std::vector<Point_d<D>> nudged_lattice(int n) {
 
 TEST_CASE("predicates are exact under flush-to-zero and upward rounding", "[kernel][fp-environment]") {
   using P = Point_d<3>;
-  const P o{{0, 0, 0}}, x{{0x1p-1074, 0, 0}}, y{{0, 1, 0}}, z{{0, 0, 1}}, q{{0x1p-1074, 0x1p-1074, 0}};
+  // Through a volatile: a constant would let the compiler fold the comparisons
+  // at compile time, where DAZ does not apply.
+  volatile double smallest_subnormal = 0x1p-1074;
+  const double t = smallest_subnormal;
+  const P o{{0, 0, 0}}, x{{t, 0, 0}}, y{{0, 1, 0}}, z{{0, 0, 1}}, q{{t, t, 0}};
   const std::array<P, 4> simplex{o, x, y, z};
   // The references first: GMP's conversion from double is floating-point code too.
   const auto orientation = dewall::test::gmp_orientation<3>(simplex);
@@ -109,10 +113,22 @@ TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero",
     const int s = scale(rng);
     for (auto& p : c) {
       for (int j = 0; j < 2; ++j) p[j] = std::ldexp(coordinate(rng), s);
-      p[2] = std::ldexp(p[0] + p[1] - 1, 0);  // the plane z = x + y − 1
+      p[2] = p[0] + p[1] - std::ldexp(1.0, s);  // the plane z = x + y − 2^s (exact)
       for (int j = 0; j < 3; ++j)
         for (int n = nudge(rng); n != 0; n += n > 0 ? -1 : 1) p[j] = std::nextafter(p[j], n > 0 ? 1e300 : -1e300);
     }
+    cases.push_back(c);
+  }
+  // Inside the filter's domain but with products that underflow: two points
+  // differ from the first by 2^-600 or 2^-530 in x and y and not in z, so the
+  // determinant is a product of two such differences (2^-1200: flushed to 0 by
+  // FTZ; 2^-1060: subnormal), while every column's largest entry is about 1.
+  for (int k = 0; k < 1000; ++k) {
+    const double e = k % 2 ? 0x1p-600 : 0x1p-530;
+    std::array<P, 5> c;
+    c[0] = P{{0, 0, 0}};
+    for (int i = 1; i <= 2; ++i) c[i] = P{{e * coordinate(rng), e * coordinate(rng), 0}};
+    for (int i = 3; i <= 4; ++i) c[i] = P{{double(coordinate(rng)), double(coordinate(rng)), double(coordinate(rng))}};
     cases.push_back(c);
   }
   std::vector<std::pair<int, int>> expected;

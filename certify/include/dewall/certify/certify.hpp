@@ -69,6 +69,7 @@
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/point.hpp"
 
 namespace dewall::certify {
 
@@ -160,7 +161,7 @@ class Certifier {
       for (std::size_t i = 0; i < n; ++i) {
         const auto& x = coords(points_[i]);
         for (double c : x)
-          if (!std::isfinite(c)) bad_point_[i] = true;
+          if (!kernel::is_finite(c)) bad_point_[i] = true;
         if (bad_point_[i]) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }

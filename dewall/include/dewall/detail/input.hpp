@@ -18,6 +18,7 @@
 #include "dewall/error.hpp"
 #include "dewall/kernel/sign.hpp"
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
@@ -34,7 +35,7 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
   for (std::size_t i = 0; i < points.size(); ++i) {
     const auto x = coords(points[i]);
     for (int j = 0; j < D; ++j)
-      if (!std::isfinite(x[j]))
+      if (!kernel::is_finite(x[j]))
         throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
   }
   std::vector<std::size_t> order(points.size());

@@ -86,7 +86,10 @@ namespace dewall::kernel {
 /// For the duration of its scope: round to nearest, subnormals kept (no
 /// flush-to-zero, no denormals-are-zero) and floating-point exceptions masked
 /// (no trap on an overflow the interval stage expects) in the calling thread;
-/// the caller's settings come back at the end of the scope.
+/// the caller's settings come back at the end of the scope. Direct calls of
+/// the predicates hold none on their fast path (the static filter is proven for
+/// any rounding mode and FTZ/DAZ), so they expect traps masked, as C and C++
+/// programs have them unless they call feenableexcept.
 /// Cost when the environment is already the default: one read of the control
 /// register and a compare (x86-64, AArch64).
 class Fp_environment_guard {
@@ -96,14 +99,16 @@ class Fp_environment_guard {
     if (c != wanted(c)) [[unlikely]] enter(c);
   }
   ~Fp_environment_guard() {
-    if (changed_) [[unlikely]] write(saved_);
+    if (changed_) [[unlikely]] leave();
   }
   Fp_environment_guard(const Fp_environment_guard&) = delete;
   Fp_environment_guard& operator=(const Fp_environment_guard&) = delete;
 
  private:
   // The common case (nothing to change) stays inline and small: one read of
-  // the control register and a compare; the rest is out of line.
+  // the control register and a compare; the rest is out of line. Out-of-line
+  // calls are also what keeps the compiler from moving floating-point
+  // arithmetic across the change (there is no FENV_ACCESS in C++).
 #if defined(DEWALL_FP_ENV_MXCSR)
   using Control = unsigned;
   // MXCSR: DAZ bit 6, exception masks bits 7–12, rounding bits 13–14, FTZ bit 15.
@@ -115,10 +120,18 @@ class Fp_environment_guard {
   }
 #elif defined(DEWALL_FP_ENV_FPCR)
   using Control = std::uint64_t;
-  // FPCR: trap enables bits 8–12 and 15, rounding bits 22–23, flush-to-zero bit 24.
-  static Control read() { return __builtin_aarch64_get_fpcr64(); }
-  static void write(Control c) { __builtin_aarch64_set_fpcr64(c); }
-  static constexpr Control wanted(Control c) { return c & ~(Control{0x9f00} | Control{3} << 22 | Control{1} << 24); }
+  // FPCR: FIZ bit 0 and AH bit 1 (FEAT_AFP: inputs flushed, alternate
+  // handling), trap enables bits 8–12 and 15, rounding bits 22–23,
+  // flush-to-zero bit 24. Inline assembly: GCC and Clang name the builtins differently.
+  static Control read() {
+    Control c;
+    asm volatile("mrs %0, fpcr" : "=r"(c));
+    return c;
+  }
+  static void write(Control c) { asm volatile("msr fpcr, %0" : : "r"(c)); }
+  static constexpr Control wanted(Control c) {
+    return c & ~(Control{3} | Control{0x9f00} | Control{3} << 22 | Control{1} << 24);
+  }
 #else
   using Control = int;  // the rounding mode: all <cfenv> says portably
   static Control read() { return std::fegetround(); }
@@ -130,6 +143,7 @@ class Fp_environment_guard {
     changed_ = true;
     write(wanted(c));
   }
+  [[gnu::noinline, gnu::cold]] void leave() const { write(saved_); }
 
   Control saved_{};
   bool changed_ = false;

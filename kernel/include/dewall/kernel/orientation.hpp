@@ -91,6 +91,23 @@ Sign orientation_d(const Orientation_points<D>& p) {
   return stages::filtered<Orientation_recipe<D>, D>(p);
 }
 
+// The instantiations compiled into dewall::kernel (kernel/src/predicates.cpp
+// expands this with an empty PREFIX). Declared `extern` here, so that a file
+// including this header never emits its own out-of-line copy (it may still
+// inline the fast path): no copy compiled with a user's flags can stand in for
+// the library's at link time (floating_point.hpp).
+#define DEWALL_ORIENTATION_INSTANTIATION(PREFIX, D)                                           \
+  PREFIX template std::optional<Sign> orientation_d_filter<D>(const Orientation_points<D>&);   \
+  PREFIX template std::optional<Sign> orientation_d_interval<D>(const Orientation_points<D>&); \
+  PREFIX template Sign orientation_d_exact<D>(const Orientation_points<D>&);                   \
+  PREFIX template Sign orientation_d<D>(const Orientation_points<D>&);                         \
+  PREFIX template Sign stages::after_filter<Orientation_recipe<D>, D>(const Orientation_points<D>&, double);
+DEWALL_ORIENTATION_INSTANTIATION(extern, 2)
+DEWALL_ORIENTATION_INSTANTIATION(extern, 3)
+DEWALL_ORIENTATION_INSTANTIATION(extern, 4)
+DEWALL_ORIENTATION_INSTANTIATION(extern, 5)
+DEWALL_ORIENTATION_INSTANTIATION(extern, 6)
+
 }  // namespace dewall::kernel
 DEWALL_FLOATING_POINT_CODE_END
 #endif

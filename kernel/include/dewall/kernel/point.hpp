@@ -56,11 +56,19 @@ constexpr Comparison_result compare_lexicographically(const Point_d<D>& a, const
   return EQUAL;
 }
 
+/// True when v is neither NaN nor infinite, decided on the bits (exponent not
+/// all ones): std::isfinite folds to true in files compiled with
+/// -ffinite-math-only, which would let a NaN through.
+constexpr bool is_finite(double v) {
+  constexpr std::uint64_t exponent = std::uint64_t{0x7ff} << 52;
+  return (std::bit_cast<std::uint64_t>(v) & exponent) != exponent;
+}
+
 /// True when every coordinate is finite (neither NaN nor infinite).
 template <int D>
-bool is_finite(const Point_d<D>& p) {
+constexpr bool is_finite(const Point_d<D>& p) {
   for (int i = 0; i < D; ++i)
-    if (!std::isfinite(p[i])) return false;
+    if (!is_finite(p[i])) return false;
   return true;
 }
 

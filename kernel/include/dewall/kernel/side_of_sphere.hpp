@@ -119,6 +119,20 @@ Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
       [](const Point_d<D>& a, const Point_d<D>& b) { return compare_lexicographically(a, b) == SMALLER; });
 }
 
+// Compiled into dewall::kernel, as DEWALL_ORIENTATION_INSTANTIATION (orientation.hpp).
+#define DEWALL_SIDE_OF_SPHERE_INSTANTIATION(PREFIX, D)                                             \
+  PREFIX template std::optional<Sign> side_of_oriented_sphere_d_filter<D>(const Sphere_points<D>&);   \
+  PREFIX template std::optional<Sign> side_of_oriented_sphere_d_interval<D>(const Sphere_points<D>&); \
+  PREFIX template Sign side_of_oriented_sphere_d_exact<D>(const Sphere_points<D>&);                   \
+  PREFIX template Oriented_side side_of_oriented_sphere_d<D>(const Sphere_points<D>&);                \
+  PREFIX template Oriented_side side_of_oriented_sphere_d_sos<D>(const Sphere_points<D>&);            \
+  PREFIX template Sign stages::after_filter<Side_of_sphere_recipe<D>, D>(const Sphere_points<D>&, double);
+DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, 2)
+DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, 3)
+DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, 4)
+DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, 5)
+DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, 6)
+
 }  // namespace dewall::kernel
 DEWALL_FLOATING_POINT_CODE_END
 #endif
