@@ -32,7 +32,7 @@ Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, cons
     case Engine::automatic:
       break;
   }
-  Search_budget budget(options.handover_candidates_per_search);
+  Search_budget budget(options.handover_candidates_per_search, points.size());
   try {
     return triangulate_generic<K>({}, points, options, simplices, wall_levels, &budget);
   } catch (const Search_budget_spent&) {

@@ -83,7 +83,7 @@ TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[eng
 TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") {
   const auto points = generated<3>(dewall::io::Point_kind::uniform, 2000, 12);
   // A budget below what any search needs hands over at once, after the
-  // 64-search allowance at most.
+  // allowance (at most 64 searches' worth) at most.
   const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5});
   CHECK(t.statistics.engine == Engine::cgal);
   CHECK(t.statistics.searches_before_handover >= 1);

@@ -34,14 +34,19 @@ struct Options {
   /// The construction. Engines other than DeWall need the project's kernel
   /// (Filtered_kernel_d); with another kernel, automatic means DeWall.
   Engine engine = Engine::automatic;
-  /// Engine::automatic hands over to the incremental construction once DeWall's
-  /// searches have examined more than this many candidate points per search on
-  /// average (counted from the first search, with an allowance of 64 searches'
-  /// worth, so one costly search near the hull does not decide). A search must
-  /// look at every point near the sphere it proves empty: on volumes and
-  /// clusters that is tens of points (3D uniform 11, bubbles 38, grid 57); on a
-  /// sphere, a torus tube or a scanned surface it is thousands, and grows with n.
-  double handover_candidates_per_search = 250;
+  /// Engine::automatic hands over to the incremental construction once the
+  /// searches of DeWall's walls have examined more than this many candidate
+  /// points per search on average (counted from the first, with an allowance of
+  /// 64 searches' worth but at most n candidates, so that a few costly
+  /// searches near the hull do not decide). A search must look at every point near the sphere it proves
+  /// empty. On volume data that is a few dozen (3D uniform: 11–20 on average;
+  /// the first wall's searches in a cube of 10^6 points average 250–500, the
+  /// reason for this limit). On a sphere, a torus tube, a scanned surface or
+  /// coplanar layers it is thousands, and grows with n; the paper's bubbles
+  /// also exceed it on today's uniform grid (hundreds of points per crowded
+  /// cell). Measured rule, not a guess about the input's name: see
+  /// docs/engines.md for the numbers.
+  double handover_candidates_per_search = 500;
 };
 
 /// Counters for the paper's Table 1, filled by triangulate.

@@ -28,7 +28,6 @@
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
-#include "dewall/detail/search_budget.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -49,45 +48,12 @@ class Simplex_search {
   static constexpr int D = K::dimension;
 
  public:
-  /// `budget`, when given, is charged with each search's candidates (and may
-  /// throw Search_budget_spent).
-  explicit Simplex_search(const Point_set<K>& ps, Search_budget* budget = nullptr) : ps_(ps), budget_(budget) {}
+  explicit Simplex_search(const Point_set<K>& ps) : ps_(ps) {}
 
   /// The apex of the Delaunay simplex on the outer side of f, or nothing when
   /// f is on the convex hull (no point strictly outside).
   /// \pre f is a face of the Delaunay triangulation.
   std::optional<Index> make_simplex(const Face<D>& f) {
-    const std::size_t before = stats_.candidates;
-    const auto apex = find_apex(f);
-    if (budget_) budget_->charge(stats_.candidates - before);
-    return apex;
-  }
-
-  /// True when no point is inside the (perturbed) circumsphere of the
-  /// positively oriented simplex s: s is a Delaunay simplex. Exact.
-  bool is_empty_sphere(const Simplex<D>& s) {
-    const Simplex_sphere<D> sphere(coords_of(s));
-    const Ball_box<D> ball = sphere.enclosing_box();
-    bool empty = true;
-    Coords<D> centre;
-    for (int j = 0; j < D; ++j) centre[j] = ball.bounded ? 0.5 * (ball.lo[j] + ball.hi[j]) : ps_.coords[s[0]][j];
-    visit_rings(ps_.grid.cell_of_point(centre), 0, [&](Index q) {
-      if (!empty || std::find(s.begin(), s.end(), q) != s.end()) return false;
-      if (ball.bounded && !in_box(ball, q)) return false;
-      if (ps_.inside_sphere(s, q)) empty = false;
-      return !empty;
-    }, [&](Cell_box<D>& box) {
-      if (ball.bounded) box = ps_.grid.cells_meeting(ball.lo, ball.hi);
-      if (!empty) box.hi[0] = box.lo[0] - 1;  // found one: stop
-    });
-    return empty;
-  }
-
-  const Search_stats& stats() const { return stats_; }
-
- private:
-  /// make_simplex without the budget: the search itself.
-  std::optional<Index> find_apex(const Face<D>& f) {
     ++stats_.searches;
     std::optional<Index> best;
     Simplex<D> s;
@@ -170,6 +136,29 @@ class Simplex_search {
     return best;
   }
 
+  /// True when no point is inside the (perturbed) circumsphere of the
+  /// positively oriented simplex s: s is a Delaunay simplex. Exact.
+  bool is_empty_sphere(const Simplex<D>& s) {
+    const Simplex_sphere<D> sphere(coords_of(s));
+    const Ball_box<D> ball = sphere.enclosing_box();
+    bool empty = true;
+    Coords<D> centre;
+    for (int j = 0; j < D; ++j) centre[j] = ball.bounded ? 0.5 * (ball.lo[j] + ball.hi[j]) : ps_.coords[s[0]][j];
+    visit_rings(ps_.grid.cell_of_point(centre), 0, [&](Index q) {
+      if (!empty || std::find(s.begin(), s.end(), q) != s.end()) return false;
+      if (ball.bounded && !in_box(ball, q)) return false;
+      if (ps_.inside_sphere(s, q)) empty = false;
+      return !empty;
+    }, [&](Cell_box<D>& box) {
+      if (ball.bounded) box = ps_.grid.cells_meeting(ball.lo, ball.hi);
+      if (!empty) box.hi[0] = box.lo[0] - 1;  // found one: stop
+    });
+    return empty;
+  }
+
+  const Search_stats& stats() const { return stats_; }
+
+ private:
   std::array<const Coords<D>*, D + 1> coords_of(const Simplex<D>& s) const {
     std::array<const Coords<D>*, D + 1> c;
     for (int i = 0; i <= D; ++i) c[i] = &ps_.coords[s[i]];
@@ -279,7 +268,6 @@ class Simplex_search {
   }
 
   const Point_set<K>& ps_;
-  Search_budget* budget_;
   std::vector<std::pair<double, Index>> near_;  // scratch: the points of rings 0 and 1, ranked
   Search_stats stats_;
 };

@@ -28,6 +28,7 @@
 
 #include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/first_simplex.hpp"
+#include "dewall/detail/search_budget.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -59,7 +60,7 @@ class Wall_builder {
   /// Appends the simplices of the triangulation of `points` to `out`.
   /// \throws Search_budget_spent when the budget is spent.
   void run(std::span<Index> points, std::vector<Built_simplex<D>>& out) {
-    Simplex_search<K> search(ps_, budget_);
+    Simplex_search<K> search(ps_);
     Wall_stats stats;
     recurse(points, Active_face_list<D>{}, 0, true, out, search, stats);
     merge(search.stats(), stats);
@@ -115,7 +116,11 @@ class Wall_builder {
     }
     while (!wall.empty()) {
       const Face<D> f = wall.pop();
+      const std::size_t candidates_before = search.stats().candidates;
       const auto apex = search.make_simplex(f);
+      // The wall's searches only: the first simplex's few wide searches (a
+      // few scans of the points) say nothing about the input's kind.
+      if (budget_) budget_->charge(search.stats().candidates - candidates_before);
       if (!apex) continue;  // a convex hull face
       Simplex<D> s;
       std::copy(f.begin(), f.end(), s.begin());
@@ -130,7 +135,7 @@ class Wall_builder {
       auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Built_simplex<D>>& o) {
         // A worker thread has its own floating-point environment (floating_point.hpp).
         const kernel::Fp_environment_guard guard;
-        Simplex_search<K> s(ps_, budget_);
+        Simplex_search<K> s(ps_);
         Wall_stats st;
         recurse(p, std::move(a), depth + 1, false, o, s, st);
         merge(s.stats(), st);
