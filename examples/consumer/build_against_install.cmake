@@ -1,12 +1,7 @@
 # CTest script: install the dewall build tree into STAGING, then configure,
 # build and run the consumer project against it (as a user would, with
 # CMAKE_PREFIX_PATH pointing at the install).
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_command.cmake)
 
 file(REMOVE_RECURSE ${STAGING} ${CONSUMER_BUILD})
 run(${CMAKE_COMMAND} --install ${DEWALL_BUILD_DIR} --prefix ${STAGING})

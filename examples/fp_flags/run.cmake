@@ -8,12 +8,7 @@
 #    with a message naming the flag (REFUSES=ON) or builds and passes the same
 #    checks (REFUSES=OFF).
 # Variables: DEWALL_BUILD_DIR, SOURCE, WORK, COMPILER, FLAGS, LAUNCHER, CLI, REFUSES.
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "failed (${rc}): ${ARGN}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../run_command.cmake)
 
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK}/data)
