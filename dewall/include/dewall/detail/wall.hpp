@@ -53,7 +53,7 @@ class Wall_builder {
 
  public:
   /// parallel_depth: recursion levels whose two subproblems run as parallel
-  /// tasks (0: serial). budget: charged by every search, when given.
+  /// tasks (0: serial). budget: charged by every search of a wall, when given.
   Wall_builder(const Point_set<K>& ps, int parallel_depth, Search_budget* budget = nullptr)
       : ps_(ps), parallel_depth_(parallel_depth), budget_(budget) {}
 
