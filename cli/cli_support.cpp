@@ -53,10 +53,10 @@ void print_stats(std::FILE* out, const Run& run) {
   const auto& s = run.stats;
   std::fprintf(out,
                "points=%zu distinct=%zu simplices=%zu first_wall_simplices=%zu recursion_depth=%zu\n"
-               "grid_cells=%zu max_points_in_cell=%zu mean_cells_per_simplex=%.2f candidates_per_search=%.2f\n"
+               "tree_leaves=%zu mean_nodes_per_simplex=%.2f candidates_per_search=%.2f\n"
                "engine=%s searches_before_handover=%zu build_s=%.6f\n",
                s.input_points, s.distinct_points, s.simplices, s.first_wall_simplices, s.recursion_depth,
-               s.grid_cells, s.max_points_in_cell, s.mean_cells_per_simplex(),
+               s.tree_leaves, s.mean_nodes_per_simplex(),
                s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0,
                engine_name(s.engine), s.searches_before_handover, run.seconds);
 }

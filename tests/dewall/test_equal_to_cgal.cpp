@@ -7,6 +7,8 @@
 #include <random>
 
 #include "dewall/dewall.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "dewall/kernel/point_array.hpp"
 #include "dewall_point_sets.hpp"
 #include "support/cgal_reference.hpp"
 
@@ -37,8 +39,18 @@ void check_equal_to_cgal(const std::vector<Point_d<D>>& points, std::uint64_t se
 }
 
 template <int D>
+std::vector<Point_d<D>> generated(io::Point_kind kind, std::size_t n, std::uint64_t seed) {
+  return kernel::points_from_coordinates<D>(io::generate_points(kind, n, D, seed).coordinates);
+}
+
+template <int D>
 void check_families(std::size_t n, std::uint64_t seed) {
   std::mt19937_64 rng(seed);
+  // The distributions the kd-tree adapts to: clusters, a surface, thin layers.
+  SECTION("clusters (bubbles)") { check_equal_to_cgal<D>(generated<D>(io::Point_kind::bubbles, n, seed), seed); }
+  SECTION("on the unit sphere") { check_equal_to_cgal<D>(generated<D>(io::Point_kind::sphere, n, seed), seed); }
+  if constexpr (D == 3)
+    SECTION("on a torus") { check_equal_to_cgal<D>(generated<D>(io::Point_kind::torus, 4 * n, seed), seed); }
   SECTION("uniform random") { check_equal_to_cgal<D>(test::uniform<D>(n, rng), seed); }
   SECTION("integer lattice") { check_equal_to_cgal<D>(test::lattice<D>(n), seed); }
   SECTION("lattice with duplicates, random order") { check_equal_to_cgal<D>(test::lattice_samples<D>(n, 3, rng), seed); }

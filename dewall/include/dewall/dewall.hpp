@@ -13,7 +13,7 @@
 //   active face lists, Update .... detail/active_face_list.hpp, detail/face.hpp
 //   MakeSimplex (dd-nearest) ..... detail/make_simplex.hpp, detail/simplex_sphere.hpp,
 //                                  detail/face_side_filter.hpp, detail/pencil_rank.hpp
-//   uniform grid ................. detail/uniform_grid.hpp
+//   uniform grid (here a kd-tree)  detail/kd_tree.hpp
 //   input checks, duplicates ..... detail/input.hpp
 //   the whole run, any kernel .... detail/triangulate_generic.hpp
 //

@@ -26,8 +26,9 @@ constexpr const char* engine_name(Engine e) {
 }
 
 struct Options {
-  /// Grid cells per point (the paper uses about one).
-  double cells_per_point = 1.0;
+  /// Points per leaf of the search structure (a kd-tree; the paper's uniform
+  /// grid has about one per cell). Only the speed depends on it.
+  std::size_t points_per_leaf = 8;
   /// Recursion levels whose two halves run as parallel tasks (TBB): up to
   /// 2^parallel_depth tasks. 0 runs serially. The output is the same either way.
   int parallel_depth = 6;
@@ -43,8 +44,7 @@ struct Options {
   /// the first wall's searches in a cube of 10^6 points average 250–500, the
   /// reason for this limit). On a sphere, a torus tube, a scanned surface or
   /// coplanar layers it is thousands, and grows with n; the paper's bubbles
-  /// also exceed it on today's uniform grid (hundreds of points per crowded
-  /// cell). Measured rule, not a guess about the input's name: see
+  /// Measured rule, not a guess about the input's name: see
   /// docs/engines.md for the numbers.
   double handover_candidates_per_search = 500;
 };
@@ -57,13 +57,12 @@ struct Statistics {
   std::size_t first_wall_simplices = 0;
   std::size_t recursion_depth = 0;
   std::size_t simplex_searches = 0;
-  std::size_t cells_visited = 0;       // by all searches
+  std::size_t nodes_visited = 0;       // kd-tree nodes, by all searches
   std::size_t candidates_tested = 0;   // points examined by all searches
-  std::size_t grid_cells = 0;
-  std::size_t max_points_in_cell = 0;
+  std::size_t tree_leaves = 0;
   Engine engine = Engine::dewall;            // the construction that built the output
   std::size_t searches_before_handover = 0;  // automatic: DeWall's searches before handing over
-  double mean_cells_per_simplex() const { return simplices ? double(cells_visited) / double(simplices) : 0.0; }
+  double mean_nodes_per_simplex() const { return simplices ? double(nodes_visited) / double(simplices) : 0.0; }
 };
 
 }  // namespace dewall

@@ -21,7 +21,7 @@
 #include <limits>
 #include <optional>
 
-#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/detail/coords.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
@@ -35,7 +35,7 @@ template <int D>
 class Face_side_filter {
  public:
   /// f: the face's vertex coordinates; [lo, hi]: a box holding every query
-  /// (the grid's bounding box), which gives a per-face error bound.
+  /// (the bounding box of all points), which gives a per-face error bound.
   Face_side_filter(const std::array<const Coords<D>*, D>& f, const Coords<D>& lo, const Coords<D>& hi)
       : origin_(*f[0]) {
     namespace eb = kernel::error_bounds;
@@ -88,7 +88,7 @@ class Face_side_filter {
   /// When Ĉ_k > e_k (the sign of C_k is certain), d_k < 0 needs d_k (Ĉ_k − e_k) > −u_k,
   /// a lower bound on x_k; when u_k ≤ 0 even d_k > 0 is needed: x_k > f0_k
   /// strictly, so a hull face whose plane carries other points (a lattice's
-  /// side) leaves no cell to scan. Symmetrically when Ĉ_k < −e_k. Everything is
+  /// side) leaves nothing to scan. Symmetrically when Ĉ_k < −e_k. Everything is
   /// evaluated in outward-rounded interval arithmetic.
   bool clip_to_outer_side(Coords<D>& lo, Coords<D>& hi) const {
     if (!valid_) return true;
@@ -122,6 +122,21 @@ class Face_side_filter {
       if (!(lo[k] <= hi[k])) return false;
     }
     return true;
+  }
+
+  /// False only when no point of the box [lo, hi] (inside the constructor's
+  /// box) is strictly on the outer side of f: for pruning a search structure.
+  /// Proof: for x in the box, with d = x − f_0, orientation(f, x) = Σ_j d_j C_j ≤
+  /// Σ_j d_j Ĉ_j + Σ_j |d_j| e_j. The linear part is largest at the corner x*
+  /// (hi_j where Ĉ_j > 0, lo_j otherwise); S(x*) = fl(Σ_j fl(x*_j − f0_j)·Ĉ_j)
+  /// is within γ_{D+1}·Σ_j |d*_j||Ĉ_j| of it, and x* and x lie in the
+  /// constructor's box, so orientation(f, x) ≤ S(x*) + region_bound_: a corner
+  /// with S(x*) ≤ −region_bound_ proves orientation ≤ 0 on the whole box.
+  bool box_may_hold_outer(const Coords<D>& lo, const Coords<D>& hi) const {
+    if (!valid_) return true;
+    double s = 0;
+    for (int j = 0; j < D; ++j) s += ((cofactor_[j] > 0 ? hi[j] : lo[j]) - origin_[j]) * cofactor_[j];
+    return s > -region_bound_;
   }
 
   static double bound(double magnitude, double carried) {

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/detail/coords.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -56,10 +56,31 @@ class Pencil_rank {
     w_.fill(0);
     for (int i = 0; i < M; ++i)
       for (int j = 0; j < D; ++j) w_[j] += lambda[i] * a[i][j];
+    w_norm2_ = dot(w_, w_);
     valid_ = true;
   }
 
   bool valid() const { return valid_; }
+
+  /// A priority for a box [lo, hi] of candidates (best-first search): about the
+  /// smallest t_q of a point of the box on the outer side, +infinity when the
+  /// box looks wholly inner. With power(x) = |x − w|² − |w|² and h(x) = x·n:
+  /// t_q = power/h ≥ min power / max h when min power ≥ 0, ≥ min power / min h
+  /// when min power < 0 < min h; a box straddling the face's hyperplane with
+  /// negative power gets min power / max h (a rank, not a bound). Only orders.
+  double box_key(const Coords<D>& lo, const Coords<D>& hi) const {
+    if (!valid_) return 0.0;
+    double power = -w_norm2_, h_max = 0, h_min = 0;
+    for (int j = 0; j < D; ++j) {
+      const double a = lo[j] - origin_[j], b = hi[j] - origin_[j];
+      const double gap = w_[j] < a ? a - w_[j] : w_[j] > b ? w_[j] - b : 0.0;
+      power += gap * gap;
+      h_max += normal_[j] > 0 ? b * normal_[j] : a * normal_[j];
+      h_min += normal_[j] > 0 ? a * normal_[j] : b * normal_[j];
+    }
+    if (!(h_max > 0)) return std::numeric_limits<double>::infinity();
+    return power >= 0 || !(h_min > 0) ? power / h_max : power / h_min;
+  }
 
   /// t_q up to a positive factor; +infinity when q does not look outer.
   double operator()(const Coords<D>& q) const {
@@ -78,6 +99,7 @@ class Pencil_rank {
   }
   Coords<D> origin_;
   std::array<double, D> normal_, w_{};
+  double w_norm2_ = 0;
   bool valid_ = false;
 };
 

@@ -1,6 +1,6 @@
 // Point_set: the distinct input points as the algorithm sees them — kernel
-// points by local index, their double coordinates for ranking, the uniform
-// grid, and the map back to input indices. Built once, then read-only.
+// points by local index, their double coordinates for ranking, the kd-tree,
+// and the map back to input indices. Built once, then read-only.
 #pragma once
 
 #include <algorithm>
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "dewall/detail/face.hpp"
-#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/detail/kd_tree.hpp"
 #include "dewall/kernel/sign.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
@@ -26,17 +26,14 @@ struct Point_set {
   std::vector<const Point*> points;     // by local index
   std::vector<Coords<D>> coords;        // approximate coordinates, by local index
   std::vector<std::size_t> input_index; // local index -> index in the caller's input
-  Uniform_grid<D> grid;
+  Kd_tree<D> tree;                      // over positions = local indices
 
-  Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, double cells_per_point)
+  Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, std::size_t leaf_size)
       : kernel(k), points(std::move(pts)), coords(approximate(k, points)), input_index(std::move(input)),
-        grid(coords, cells_per_point) {
-    // Renumber the points in cell order, so that a cell's points and their
-    // coordinates are contiguous in memory (the grid is then rebuilt, and
-    // lists each cell's points as consecutive local indices).
-    std::vector<Index> order;
-    order.reserve(size());
-    for (std::size_t c = 0; c < grid.cell_count(); ++c) order.insert(order.end(), grid.begin(c), grid.end(c));
+        tree(coords, leaf_size) {
+    // Renumber the points in tree order: local index i is the tree's position
+    // i, so a node's points and their coordinates are contiguous in memory.
+    const std::vector<Index>& order = tree.order();
     std::vector<const Point*> p(size());
     std::vector<Coords<D>> x(size());
     std::vector<std::size_t> in(size());
@@ -48,7 +45,6 @@ struct Point_set {
     points.swap(p);
     coords.swap(x);
     input_index.swap(in);
-    grid = Uniform_grid<D>(coords, cells_per_point);
   }
 
   std::size_t size() const { return points.size(); }
@@ -84,7 +80,7 @@ struct Point_set {
 
   /// Scales every coordinate by one power of two 2^s, bringing the largest to
   /// [1, 2), when that is exact for all of them (each result zero or a normal
-  /// double). The algorithm's own double computations — grid, rings, ball
+  /// double). The algorithm's own double computations — tree boxes, ball
   /// boxes, the face and sphere filters — then work near 1 whatever the input's
   /// scale: at 2^±600 they overflow or underflow (a 4D grid of 625 points
   /// scaled by 2^600 took minutes instead of 0.05 s). Nothing changes meaning:

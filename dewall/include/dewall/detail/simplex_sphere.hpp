@@ -1,6 +1,6 @@
 // Simplex_sphere: the circumsphere of one simplex, for the many queries of a
 // search: a proven in-sphere filter at the cost of a dot product per query,
-// and a box proven to contain the closed ball, for pruning the grid.
+// and a box proven to contain the closed ball, for pruning the search.
 //
 // Derivation. With y_i = s_i − s_0 (i = 1..D) and x = q − s_0, the lifted
 // determinant translated by s_0 and expanded along its row of s_0 is
@@ -37,7 +37,7 @@
 #include <limits>
 #include <optional>
 
-#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/detail/coords.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
@@ -50,6 +50,30 @@ template <int D>
 struct Ball_box {
   Coords<D> lo, hi;
   bool bounded = false;  // false: no proven box (degenerate or extreme simplex); search everywhere
+  // The centre lies in [centre_lo, centre_hi] and the radius r satisfies
+  // r² · (1 + 2^-40) + 2^-1000 ≤ radius2_limit.
+  Coords<D> centre_lo, centre_hi;
+  double radius2_limit = 0;
+
+  /// False only when the box [lo, hi] and the closed ball are proven disjoint.
+  /// Proof: with G_j ≥ 0 the exact gap between [lo_j, hi_j] and [centre_lo_j,
+  /// centre_hi_j], every point of the box is at distance ≥ (Σ G_j²)^½ from the
+  /// centre. Each g_j below is one subtraction (≤ G_j(1 + 2^-52) in any rounding
+  /// mode; exact when subnormal), and the sum of squares adds at most D + 1
+  /// more such factors and D·2^-1022 lost to underflow or flushing, which the
+  /// margins of radius2_limit exceed for D ≤ 6: gap2 > radius2_limit proves
+  /// Σ G_j² > r².
+  bool may_meet(const Coords<D>& box_lo, const Coords<D>& box_hi) const {
+    if (!bounded) return true;
+    double gap2 = 0;
+    for (int j = 0; j < D; ++j) {
+      const double g = box_lo[j] > centre_hi[j]   ? box_lo[j] - centre_hi[j]
+                       : centre_lo[j] > box_hi[j] ? centre_lo[j] - box_hi[j]
+                                                  : 0.0;
+      gap2 += g * g;
+    }
+    return !(gap2 > radius2_limit);
+  }
 };
 
 template <int D>
@@ -180,7 +204,12 @@ class Simplex_sphere {
       box.lo[j] = (centre[j] - Interval(radius)).lo();
       box.hi[j] = (centre[j] + Interval(radius)).hi();
       if (!std::isfinite(box.lo[j]) || !std::isfinite(box.hi[j])) return box;
+      box.centre_lo[j] = centre[j].lo();
+      box.centre_hi[j] = centre[j].hi();
     }
+    const Interval limit = Interval(radius) * Interval(radius) * Interval(1 + 0x1p-40) + Interval(0x1p-1000);
+    box.radius2_limit = limit.hi();
+    if (!std::isfinite(box.radius2_limit)) return box;
     box.bounded = true;
     return box;
   }

@@ -9,7 +9,7 @@
 #include <span>
 
 #include "dewall/detail/face.hpp"
-#include "dewall/detail/uniform_grid.hpp"
+#include "dewall/detail/coords.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

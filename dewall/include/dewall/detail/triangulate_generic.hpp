@@ -32,7 +32,7 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   const std::vector<std::size_t> input = distinct_points<K>(k, points);
   std::vector<const typename K::Point_d*> refs(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
-  const Point_set<K> ps(k, std::move(refs), input, options.cells_per_point);
+  const Point_set<K> ps(k, std::move(refs), input, options.points_per_leaf);
   require_full_dimension<D>(ps.coords_for_checks());
 
   Wall_builder<K> builder(ps, options.parallel_depth, budget);
@@ -56,10 +56,9 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   st.first_wall_simplices = builder.stats().first_wall_simplices;
   st.recursion_depth = builder.stats().max_depth;
   st.simplex_searches = builder.search_stats().searches;
-  st.cells_visited = builder.search_stats().cells_visited;
+  st.nodes_visited = builder.search_stats().nodes_visited;
   st.candidates_tested = builder.search_stats().candidates;
-  st.grid_cells = ps.grid.cell_count();
-  st.max_points_in_cell = ps.grid.max_points_in_cell();
+  st.tree_leaves = ps.tree.leaf_count();
   return st;
 }
 

@@ -152,8 +152,11 @@ class Wall_builder {
   void merge(const Search_stats& s, const Wall_stats& w) {
     const std::lock_guard lock(mutex_);
     search_stats_.searches += s.searches;
-    search_stats_.cells_visited += s.cells_visited;
+    search_stats_.nodes_visited += s.nodes_visited;
     search_stats_.candidates += s.candidates;
+    search_stats_.best_changes += s.best_changes;
+    search_stats_.in_sphere_tests += s.in_sphere_tests;
+    search_stats_.unbounded += s.unbounded;
     stats_.simplices += w.simplices;
     stats_.first_wall_simplices += w.first_wall_simplices;
     stats_.max_depth = std::max(stats_.max_depth, w.max_depth);

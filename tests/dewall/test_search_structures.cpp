@@ -1,0 +1,230 @@
+// The search's structures, each on its own: the kd-tree against brute force,
+// and the two floating-point pruning tests of a search (a box misses the ball
+// of a sphere; a box holds no point on the outer side of a face) against exact
+// GMP evaluation, on random, near-degenerate and extreme inputs.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "dewall/detail/face_side_filter.hpp"
+#include "dewall/detail/kd_tree.hpp"
+#include "dewall/detail/simplex_sphere.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "support/gmp_reference.hpp"
+
+using namespace dewall;
+using detail::Coords;
+
+namespace {
+
+template <int D>
+std::vector<Coords<D>> generated(io::Point_kind kind, std::size_t n, std::uint64_t seed) {
+  const io::Point_table table = io::generate_points(kind, n, D, seed);
+  std::vector<Coords<D>> c(table.coordinates.size() / D);
+  for (std::size_t i = 0; i < c.size(); ++i)
+    for (int j = 0; j < D; ++j) c[i][j] = table.coordinates[i * D + static_cast<std::size_t>(j)];
+  return c;
+}
+
+template <int D>
+void check_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) {
+  INFO("n = " << coords.size() << ", leaf size " << leaf_size);
+  const detail::Kd_tree<D> tree(coords, leaf_size);
+  // The order is a permutation.
+  std::vector<detail::Index> sorted = tree.order();
+  std::sort(sorted.begin(), sorted.end());
+  for (std::size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == i);
+  std::size_t leaves = 0;
+  std::vector<int> leaf_hits(coords.size(), 0);
+  for (detail::Index at = 0; at < tree.node_count(); ++at) {
+    const auto& n = tree.node(at);
+    REQUIRE(n.begin < n.end);
+    // The box is the tight bounding box of the node's points.
+    Coords<D> lo = coords[tree.order()[n.begin]], hi = lo;
+    for (detail::Index p = n.begin; p < n.end; ++p)
+      for (int j = 0; j < D; ++j) {
+        lo[j] = std::min(lo[j], coords[tree.order()[p]][j]);
+        hi[j] = std::max(hi[j], coords[tree.order()[p]][j]);
+      }
+    CHECK(n.lo == lo);
+    CHECK(n.hi == hi);
+    if (n.is_leaf()) {
+      ++leaves;
+      CHECK((n.end - n.begin <= leaf_size || lo == hi));
+      for (detail::Index p = n.begin; p < n.end; ++p) {
+        ++leaf_hits[p];
+        CHECK(tree.leaf_of(p) == at);
+      }
+    } else {
+      // The children split the range in two, and know their parent.
+      const auto& a = tree.node(n.first_child);
+      const auto& b = tree.node(n.first_child + 1);
+      CHECK(a.begin == n.begin);
+      CHECK(a.end == b.begin);
+      CHECK(b.end == n.end);
+      CHECK(a.parent == at);
+      CHECK(b.parent == at);
+    }
+  }
+  CHECK(leaves == tree.leaf_count());
+  CHECK(std::all_of(leaf_hits.begin(), leaf_hits.end(), [](int h) { return h == 1; }));
+}
+
+template <int D>
+kernel::Point_d<D> as_point(const Coords<D>& c) {
+  kernel::Point_d<D> p;
+  for (int j = 0; j < D; ++j) p[j] = c[j];
+  return p;
+}
+
+/// Points of the box [lo, hi] to check a "nothing in this box" claim on: its
+/// corners (all of them, D ≤ 4), random points, and the point of the box
+/// nearest to `target` (where a ball would reach first).
+template <int D, class Rng>
+std::vector<Coords<D>> witnesses(const Coords<D>& lo, const Coords<D>& hi, const Coords<D>& target, Rng& rng) {
+  std::vector<Coords<D>> w;
+  for (unsigned mask = 0; mask < (1u << D); ++mask) {
+    Coords<D> c;
+    for (int j = 0; j < D; ++j) c[j] = (mask >> j) & 1 ? hi[j] : lo[j];
+    w.push_back(c);
+  }
+  Coords<D> nearest;
+  for (int j = 0; j < D; ++j) nearest[j] = std::clamp(target[j], lo[j], hi[j]);
+  w.push_back(nearest);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (int k = 0; k < 8; ++k) {
+    Coords<D> c;
+    for (int j = 0; j < D; ++j) c[j] = std::clamp(lo[j] + u(rng) * (hi[j] - lo[j]), lo[j], hi[j]);
+    w.push_back(c);
+  }
+  return w;
+}
+
+/// A random simplex of one of several kinds: plain, nearly flat, tiny or huge,
+/// far from the origin.
+template <int D, class Rng>
+std::array<Coords<D>, D + 1> random_simplex(Rng& rng, int kind) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::array<Coords<D>, D + 1> s;
+  for (auto& p : s)
+    for (double& v : p) v = u(rng);
+  if (kind == 1)  // nearly flat: a huge, barely bounded sphere
+    for (int i = 0; i <= D; ++i) s[i][D - 1] = 1e-9 * u(rng);
+  const double scale = kind == 2 ? 0x1p-40 : kind == 3 ? 0x1p40 : 1.0;
+  const double offset = kind == 4 ? 1e6 : 0.0;
+  for (auto& p : s)
+    for (double& v : p) v = v * scale + offset;
+  return s;
+}
+
+}  // namespace
+
+TEMPLATE_TEST_CASE_SIG("kd-tree: ranges, tight boxes and leaves against brute force", "[search][tree]", ((int D), D), 2,
+                       3, 4) {
+  for (const auto kind : {io::Point_kind::uniform, io::Point_kind::bubbles, io::Point_kind::grid,
+                          io::Point_kind::sphere, io::Point_kind::planes})
+    for (const std::size_t leaf : {std::size_t{1}, std::size_t{3}, std::size_t{8}}) {
+      INFO("kind " << io::point_kind_name(kind));
+      check_tree<D>(generated<D>(kind, 700, 17), leaf);
+    }
+  // Equal coordinates: duplicates of approximate coordinates end in one leaf.
+  std::vector<Coords<D>> same(40, Coords<D>{});
+  same.push_back(Coords<D>{});
+  same.back()[0] = 1;
+  check_tree<D>(same, 4);
+  check_tree<D>(std::vector<Coords<D>>(1, Coords<D>{}), 8);
+}
+
+TEMPLATE_TEST_CASE_SIG("the ball test never drops a box that meets the closed ball (GMP)", "[search][gmp]", ((int D), D),
+                       2, 3, 4) {
+  std::mt19937_64 rng(20261123 + D);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t pruned = 0, checked = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int kind = trial % 5;
+    auto s = random_simplex<D>(rng, kind);
+    std::array<kernel::Point_d<D>, D + 1> p;
+    for (int i = 0; i <= D; ++i) p[i] = as_point<D>(s[i]);
+    if (test::gmp_orientation<D>(p) == kernel::NEGATIVE) {
+      std::swap(s[0], s[1]);
+      std::swap(p[0], p[1]);
+    }
+    std::array<const Coords<D>*, D + 1> refs;
+    for (int i = 0; i <= D; ++i) refs[i] = &s[i];
+    const detail::Simplex_sphere<D> sphere(refs);
+    const auto& ball = sphere.enclosing_box();
+    if (!ball.bounded) continue;
+    Coords<D> centre;
+    for (int j = 0; j < D; ++j) centre[j] = 0.5 * (ball.centre_lo[j] + ball.centre_hi[j]);
+    const double radius = 0.5 * (ball.hi[0] - ball.lo[0]);
+    for (int b = 0; b < 6; ++b) {
+      // Boxes about the sphere: some inside, some just outside, some far.
+      Coords<D> lo, hi;
+      const double reach = radius * (b < 3 ? 1.0 + 0.05 * b : 0.5 + b);
+      for (int j = 0; j < D; ++j) {
+        const double a = centre[j] + reach * u(rng), w = radius * 0.3 * std::fabs(u(rng));
+        lo[j] = a;
+        hi[j] = a + w;
+      }
+      if (ball.may_meet(lo, hi)) continue;
+      ++pruned;
+      for (const auto& x : witnesses<D>(lo, hi, centre, rng)) {
+        ++checked;
+        // Strictly outside the closed ball: the unperturbed exact predicate.
+        REQUIRE(test::gmp_side_of_oriented_sphere<D>(p, as_point<D>(x)) == kernel::ON_NEGATIVE_SIDE);
+      }
+    }
+  }
+  CHECK(pruned > 1000);  // the test prunes, so it is tested
+  CHECK(checked > 10 * pruned);
+}
+
+TEMPLATE_TEST_CASE_SIG("the outer-side test never drops a box holding an outer point (GMP)", "[search][gmp]",
+                       ((int D), D), 2, 3, 4) {
+  std::mt19937_64 rng(20261124 + D);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t pruned = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    const int kind = trial % 5;
+    const auto s = random_simplex<D>(rng, kind);
+    std::array<const Coords<D>*, D> face;
+    for (int i = 0; i < D; ++i) face[i] = &s[i];
+    // The region of all queries: the simplex's bounding box, widened.
+    Coords<D> lo = s[0], hi = s[0];
+    for (const auto& x : s)
+      for (int j = 0; j < D; ++j) {
+        lo[j] = std::min(lo[j], x[j]);
+        hi[j] = std::max(hi[j], x[j]);
+      }
+    for (int j = 0; j < D; ++j) {
+      const double w = hi[j] - lo[j];
+      lo[j] -= w;
+      hi[j] += w;
+    }
+    const detail::Face_side_filter<D> filter(face, lo, hi);
+    for (int b = 0; b < 8; ++b) {
+      // A sub-box of the region; some thin ones lying on the face's hyperplane's
+      // neighbourhood (a face vertex as a corner).
+      Coords<D> blo, bhi;
+      std::uniform_real_distribution<double> t(0, 1);
+      for (int j = 0; j < D; ++j) {
+        double a = lo[j] + t(rng) * (hi[j] - lo[j]), c = lo[j] + t(rng) * (hi[j] - lo[j]);
+        if (b == 0) a = c = s[0][j];
+        blo[j] = std::min(a, c);
+        bhi[j] = std::max(a, c);
+      }
+      if (filter.box_may_hold_outer(blo, bhi)) continue;
+      ++pruned;
+      for (const auto& x : witnesses<D>(blo, bhi, s[D], rng)) {
+        std::array<kernel::Point_d<D>, D + 1> p;
+        for (int i = 0; i < D; ++i) p[i] = as_point<D>(s[i]);
+        p[D] = as_point<D>(x);
+        REQUIRE(test::gmp_orientation<D>(p) != kernel::POSITIVE);
+      }
+    }
+  }
+  CHECK(pruned > 1000);
+}
