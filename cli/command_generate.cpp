@@ -1,4 +1,5 @@
-// dewall generate KIND N [--dim D] [--seed S] [--noise X] [-o FILE] [--quiet]
+// dewall generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -61,6 +62,7 @@ int command_generate(int argc, char** argv) {
         else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
         else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
         else if (a == "--noise") shape.noise = parse_noise(next_arg(i, argc, argv));
+        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "plane count"), 1001L));
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -71,6 +73,10 @@ int command_generate(int argc, char** argv) {
   const std::size_t n = parse_count(operands[1]);
   if (shape.noise != 0 && *kind != io::Point_kind::sphere && *kind != io::Point_kind::torus)
     throw Usage_error(std::string("--noise applies to sphere and torus only, not ") + io::point_kind_name(*kind));
+  if (shape.planes != 0 && *kind != io::Point_kind::planes)
+    throw Usage_error(std::string("--planes applies to kind planes only, not ") + io::point_kind_name(*kind));
+  if (shape.planes != 0 && (shape.planes < 2 || shape.planes > 1000))
+    throw Usage_error("--planes must be 2 to 1000, not " + std::to_string(shape.planes) + (shape.planes > 1000 ? " or more" : ""));
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6, not " + std::to_string(dim));
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
@@ -103,7 +109,7 @@ int command_generate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"generate", command_generate,
-    "  generate KIND N [--dim D] [--seed S] [--noise X] [-o FILE] [--quiet]\n"
+    "  generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]\n"
     "      Writes a point set of E^D (D = 2 to 6, default 3): KIND is uniform (unit\n"
     "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
     "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
@@ -112,6 +118,8 @@ const bool registered = register_command({"generate", command_generate,
     "      written 1e6. --noise X (0 to 1, sphere and torus only) moves each\n"
     "      point along the surface normal by X times the radius (sphere: 1,\n"
     "      torus: the tube radius 0.3) times a standard normal deviate.\n"
+    "      --planes P (2 to 1000, kind planes only) sets the number of planes\n"
+    "      (default about log2(N) / 2, 2 to 8).\n"
     "      The seed (default: random) is printed on stderr. FILE:\n"
     "      plain text (default: standard output), binary when it ends in .dwpt,\n"
     "      VTK when it ends in .vtk (2D and 3D).\n"});

@@ -154,13 +154,15 @@ void grid(Point_table& t, std::size_t n) {
   }
 }
 
-/// n points on p = 2 … 8 hyperplanes x_{D−1} = h_0 < … < h_{p−1} in [0, 1]; the
+/// n points on p hyperplanes x_{D−1} = h_0 < … < h_{p−1} in [0, 1] (p = `count`,
+/// or when that is 0 about log2(n) / 2, 2 … 8); the
 /// height of a plane is one double shared by all its points, so each plane is
 /// exactly a hyperplane; the other coordinates are uniform in [0, 1). Point i
 /// lies on plane i mod p, so every plane gets its share.
-void planes(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+void planes(Point_table& t, std::size_t n, int count, Rng& rng, Progress* progress) {
   const auto d = static_cast<std::size_t>(t.dimension);
-  const auto p = static_cast<std::size_t>(std::clamp(std::lround(std::log2(static_cast<double>(n)) / 2), 2L, 8L));
+  const auto p = count != 0 ? static_cast<std::size_t>(count)
+                            : static_cast<std::size_t>(std::clamp(std::lround(std::log2(static_cast<double>(n)) / 2), 2L, 8L));
   t.coordinates.reserve(n * d);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j + 1 < d; ++j) t.coordinates.push_back(uniform01(rng));
@@ -364,6 +366,10 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     throw std::invalid_argument("noise " + std::to_string(noise) + " is outside [0, 1]");
   if (noise != 0 && kind != Point_kind::sphere && kind != Point_kind::torus)
     throw std::invalid_argument(std::string("noise applies to sphere and torus only, not ") + point_kind_name(kind));
+  if (options.planes != 0 && (options.planes < 2 || options.planes > 1000))
+    throw std::invalid_argument("plane count " + std::to_string(options.planes) + " is outside 2 … 1000");
+  if (options.planes != 0 && kind != Point_kind::planes)
+    throw std::invalid_argument(std::string("a plane count applies to kind planes only, not ") + point_kind_name(kind));
   if (dimension < 2 || dimension > 6)
     throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
   if (n < static_cast<std::size_t>(dimension) + 1)
@@ -380,7 +386,7 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     case Point_kind::bubbles: bubbles(t, n, rng, progress); break;
     case Point_kind::grid: grid(t, n); break;
     case Point_kind::lattice_sphere: dimension == 2 ? lattice_sphere_2(t, n) : lattice_sphere_high(t, n); break;
-    case Point_kind::planes: planes(t, n, rng, progress); break;
+    case Point_kind::planes: planes(t, n, options.planes, rng, progress); break;
     case Point_kind::torus: torus(t, n, noise, rng, progress); break;
   }
   if (progress) progress->finish();

@@ -253,3 +253,21 @@ TEST_CASE("generators: noise is checked", "[generate]") {
   CHECK_THROWS_AS(generate_points(Point_kind::sphere, 100, 3, 0, Generator_options{.noise = std::nan("")}),
                   std::invalid_argument);
 }
+
+TEST_CASE("generators: planes with a chosen count", "[generate]") {
+  for (int d = 2; d <= 6; ++d)
+    for (int count : {2, 3, 20}) {
+      INFO("dimension " << d << ", " << count << " planes");
+      const auto t = generate_points(Point_kind::planes, 1000, d, 9, dewall::io::Generator_options{.planes = count});
+      std::set<double> heights;
+      for (std::size_t i = 0; i < t.size(); ++i) heights.insert(coordinate(t, i, d - 1));
+      CHECK(heights.size() == static_cast<std::size_t>(count));
+      CHECK(*heights.begin() == 0.0);
+      CHECK(*heights.rbegin() == 1.0);
+    }
+  using dewall::io::Generator_options;
+  CHECK_THROWS_AS(generate_points(Point_kind::planes, 100, 3, 0, Generator_options{.planes = 1}), std::invalid_argument);
+  CHECK_THROWS_AS(generate_points(Point_kind::planes, 100, 3, 0, Generator_options{.planes = 1001}), std::invalid_argument);
+  CHECK_THROWS_WITH(generate_points(Point_kind::uniform, 100, 3, 0, Generator_options{.planes = 2}),
+                    Catch::Contains("kind planes only"));
+}

@@ -45,6 +45,10 @@ struct Generator_options {
   /// default, gives exactly the points of the overload without options.
   /// \pre 0 ≤ noise ≤ 1, finite.
   double noise = 0;
+  /// The number of hyperplanes of kind `planes`; 0, the default, chooses
+  /// about log2(n) / 2 of them (2 … 8). 2 is the paper's Figure 7.
+  /// \pre 0 or 2 … 1000; 0 for every other kind.
+  int planes = 0;
 };
 
 /// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
@@ -63,8 +67,9 @@ std::string point_kind_names();
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
                             Progress* progress = nullptr);
 /// As above, with `options` (Generator_options::noise).
-/// \throws std::invalid_argument also for a noise outside [0, 1] or a non-zero
-/// noise for a kind other than sphere and torus.
+/// \throws std::invalid_argument also for a noise outside [0, 1], a non-zero
+/// noise for a kind other than sphere and torus, or a plane count other than 0
+/// or 2 … 1000 (non-zero for kind planes only).
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
                             const Generator_options& options, Progress* progress = nullptr);
 
