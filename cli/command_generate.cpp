@@ -88,10 +88,12 @@ int command_generate(int argc, char** argv) {
   }
   // The seed is what makes a run reproducible: print it unless the user both
   // chose it and asked for silence.
-  if (!(quiet && seeded))
+  if (!(quiet && seeded)) {
+    char extra[64] = "";
+    if (shape.noise != 0) std::snprintf(extra, sizeof extra, ", noise %g", shape.noise);
     std::fprintf(stderr, "dewall generate: %s, %zu points asked, E^%ld, seed %llu%s\n", io::point_kind_name(*kind), n,
-                 dim, static_cast<unsigned long long>(seed),
-                 shape.noise != 0 ? (", noise " + std::to_string(shape.noise)).c_str() : "");
+                 dim, static_cast<unsigned long long>(seed), extra);
+  }
 
   io::Progress progress(!quiet && io::stderr_is_terminal());
   io::Point_table table;
