@@ -1,4 +1,5 @@
-// dewall generate KIND N [--dim D] [--seed S] [-o FILE] [--quiet]
+// dewall generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -36,6 +37,16 @@ std::uint64_t parse_seed(const std::string& s) {
   return v;
 }
 
+/// The relative noise of --noise: a finite number in [0, 1].
+double parse_noise(const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0 && v <= 1))
+    throw Usage_error("invalid noise " + io::quoted(s) + " (a number from 0 to 1, e.g. 0.05)");
+  return v;
+}
+
 }  // namespace
 
 int command_generate(int argc, char** argv) {
@@ -43,12 +54,15 @@ int command_generate(int argc, char** argv) {
   long dim = 3;
   std::uint64_t seed = 0;
   bool seeded = false, quiet = false;
+  io::Generator_options shape;
   const auto operands = parse_arguments(
       argc, argv, 2,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
         else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
+        else if (a == "--noise") shape.noise = parse_noise(next_arg(i, argc, argv));
+        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "plane count"), 1001L));
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -57,6 +71,12 @@ int command_generate(int argc, char** argv) {
   const auto kind = io::parse_point_kind(operands[0]);
   if (!kind) throw Usage_error("unknown kind " + io::quoted(operands[0]) + " (one of " + io::point_kind_names() + ")");
   const std::size_t n = parse_count(operands[1]);
+  if (shape.noise != 0 && *kind != io::Point_kind::sphere && *kind != io::Point_kind::torus)
+    throw Usage_error(std::string("--noise applies to sphere and torus only, not ") + io::point_kind_name(*kind));
+  if (shape.planes != 0 && *kind != io::Point_kind::planes)
+    throw Usage_error(std::string("--planes applies to kind planes only, not ") + io::point_kind_name(*kind));
+  if (shape.planes != 0 && (shape.planes < 2 || shape.planes > 1000))
+    throw Usage_error("--planes must be 2 to 1000, not " + std::to_string(shape.planes) + (shape.planes > 1000 ? " or more" : ""));
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6, not " + std::to_string(dim));
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
@@ -68,14 +88,17 @@ int command_generate(int argc, char** argv) {
   }
   // The seed is what makes a run reproducible: print it unless the user both
   // chose it and asked for silence.
-  if (!(quiet && seeded))
-    std::fprintf(stderr, "dewall generate: %s, %zu points asked, E^%ld, seed %llu\n", io::point_kind_name(*kind), n,
-                 dim, static_cast<unsigned long long>(seed));
+  if (!(quiet && seeded)) {
+    char extra[64] = "";
+    if (shape.noise != 0) std::snprintf(extra, sizeof extra, ", noise %g", shape.noise);
+    std::fprintf(stderr, "dewall generate: %s, %zu points asked, E^%ld, seed %llu%s\n", io::point_kind_name(*kind), n,
+                 dim, static_cast<unsigned long long>(seed), extra);
+  }
 
   io::Progress progress(!quiet && io::stderr_is_terminal());
   io::Point_table table;
   try {
-    table = io::generate_points(*kind, n, static_cast<int>(dim), seed, &progress);
+    table = io::generate_points(*kind, n, static_cast<int>(dim), seed, shape, &progress);
   } catch (const std::invalid_argument& e) {
     throw Usage_error(e.what());
   }
@@ -88,13 +111,18 @@ int command_generate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"generate", command_generate,
-    "  generate KIND N [--dim D] [--seed S] [-o FILE] [--quiet]\n"
+    "  generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]\n"
     "      Writes a point set of E^D (D = 2 to 6, default 3): KIND is uniform (unit\n"
     "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
     "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
     "      one sphere, about N, exactly cospherical), planes (on 2 to 8 parallel\n"
     "      hyperplanes) or torus (on a torus surface, like a scan). N may be\n"
-    "      written 1e6. The seed (default: random) is printed on stderr. FILE:\n"
+    "      written 1e6. --noise X (0 to 1, sphere and torus only) moves each\n"
+    "      point along the surface normal by X times the radius (sphere: 1,\n"
+    "      torus: the tube radius 0.3) times a standard normal deviate.\n"
+    "      --planes P (2 to 1000, kind planes only) sets the number of planes\n"
+    "      (default about log2(N) / 2, 2 to 8).\n"
+    "      The seed (default: random) is printed on stderr. FILE:\n"
     "      plain text (default: standard output), binary when it ends in .dwpt,\n"
     "      VTK when it ends in .vtk (2D and 3D).\n"});
 }  // namespace

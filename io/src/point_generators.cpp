@@ -63,8 +63,10 @@ void ball(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
   }
 }
 
-/// A normal vector divided by its length is uniform on the sphere.
-void sphere(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+/// A normal vector divided by its length is uniform on the sphere. With noise,
+/// the radius is 1 + noise · z (z drawn after the direction, so noise 0 draws
+/// nothing more and keeps the points of the noiseless generator).
+void sphere(Point_table& t, std::size_t n, double noise, Rng& rng, Progress* progress) {
   const auto d = static_cast<std::size_t>(t.dimension);
   std::vector<double> p(d);
   for (std::size_t i = 0; i < n; ++i) {
@@ -74,7 +76,12 @@ void sphere(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
       for (auto& x : p) x = normal(rng), s += x * x;
     } while (s < 1e-12);  // a direction needs a length
     const double r = std::sqrt(s);
-    for (auto x : p) t.coordinates.push_back(x / r);
+    if (noise == 0) {
+      for (auto x : p) t.coordinates.push_back(x / r);
+    } else {
+      const double radius = 1 + noise * normal(rng);
+      for (auto x : p) t.coordinates.push_back(x / r * radius);
+    }
     tick(progress, i);
   }
 }
@@ -86,7 +93,10 @@ void sphere(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
 /// ((R + r·u_0)·cos θ, (R + r·u_0)·sin θ, r·u_1, …); keeping it with probability
 /// (R + r·u_0)/(R + r) makes the density uniform by area. Like a scanned
 /// surface, and unlike a sphere, most of its Delaunay balls are small.
-void torus(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+/// With noise, the point moves along the normal u: the tube radius becomes
+/// r · (1 + noise · z), z drawn after the point is accepted (noise 0 draws
+/// nothing more), so the density stays uniform by area on the noiseless torus.
+void torus(Point_table& t, std::size_t n, double noise, Rng& rng, Progress* progress) {
   constexpr double R = 1.0, r = 0.3, pi = 3.14159265358979323846;
   const auto d = static_cast<std::size_t>(t.dimension);
   std::vector<double> u(d - 1);
@@ -98,10 +108,11 @@ void torus(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
     const double norm = std::sqrt(s);
     for (auto& x : u) x /= norm;
     if (uniform01(rng) * (R + r) > R + r * u[0]) continue;
-    const double theta = 2 * pi * uniform01(rng), radius = R + r * u[0];
+    const double theta = 2 * pi * uniform01(rng);
+    const double tube = noise == 0 ? r : r * (1 + noise * normal(rng)), radius = R + tube * u[0];
     t.coordinates.push_back(radius * std::cos(theta));
     t.coordinates.push_back(radius * std::sin(theta));
-    for (std::size_t j = 1; j + 1 < d; ++j) t.coordinates.push_back(r * u[j]);
+    for (std::size_t j = 1; j + 1 < d; ++j) t.coordinates.push_back(tube * u[j]);
     tick(progress, i++);
   }
 }
@@ -143,13 +154,15 @@ void grid(Point_table& t, std::size_t n) {
   }
 }
 
-/// n points on p = 2 … 8 hyperplanes x_{D−1} = h_0 < … < h_{p−1} in [0, 1]; the
+/// n points on p hyperplanes x_{D−1} = h_0 < … < h_{p−1} in [0, 1] (p = `count`,
+/// or when that is 0 about log2(n) / 2, 2 … 8); the
 /// height of a plane is one double shared by all its points, so each plane is
 /// exactly a hyperplane; the other coordinates are uniform in [0, 1). Point i
 /// lies on plane i mod p, so every plane gets its share.
-void planes(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+void planes(Point_table& t, std::size_t n, int count, Rng& rng, Progress* progress) {
   const auto d = static_cast<std::size_t>(t.dimension);
-  const auto p = static_cast<std::size_t>(std::clamp(std::lround(std::log2(static_cast<double>(n)) / 2), 2L, 8L));
+  const auto p = count != 0 ? static_cast<std::size_t>(count)
+                            : static_cast<std::size_t>(std::clamp(std::lround(std::log2(static_cast<double>(n)) / 2), 2L, 8L));
   t.coordinates.reserve(n * d);
   for (std::size_t i = 0; i < n; ++i) {
     for (std::size_t j = 0; j + 1 < d; ++j) t.coordinates.push_back(uniform01(rng));
@@ -343,6 +356,20 @@ std::string point_kind_names() {
 }
 
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed, Progress* progress) {
+  return generate_points(kind, n, dimension, seed, Generator_options{}, progress);
+}
+
+Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
+                            const Generator_options& options, Progress* progress) {
+  const double noise = options.noise;
+  if (!(noise >= 0 && noise <= 1))  // also rejects NaN
+    throw std::invalid_argument("noise " + std::to_string(noise) + " is outside [0, 1]");
+  if (noise != 0 && kind != Point_kind::sphere && kind != Point_kind::torus)
+    throw std::invalid_argument(std::string("noise applies to sphere and torus only, not ") + point_kind_name(kind));
+  if (options.planes != 0 && (options.planes < 2 || options.planes > 1000))
+    throw std::invalid_argument("plane count " + std::to_string(options.planes) + " is outside 2 … 1000");
+  if (options.planes != 0 && kind != Point_kind::planes)
+    throw std::invalid_argument(std::string("a plane count applies to kind planes only, not ") + point_kind_name(kind));
   if (dimension < 2 || dimension > 6)
     throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
   if (n < static_cast<std::size_t>(dimension) + 1)
@@ -355,12 +382,12 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
   switch (kind) {
     case Point_kind::uniform: uniform_cube(t, n, rng, progress); break;
     case Point_kind::ball: ball(t, n, rng, progress); break;
-    case Point_kind::sphere: sphere(t, n, rng, progress); break;
+    case Point_kind::sphere: sphere(t, n, noise, rng, progress); break;
     case Point_kind::bubbles: bubbles(t, n, rng, progress); break;
     case Point_kind::grid: grid(t, n); break;
     case Point_kind::lattice_sphere: dimension == 2 ? lattice_sphere_2(t, n) : lattice_sphere_high(t, n); break;
-    case Point_kind::planes: planes(t, n, rng, progress); break;
-    case Point_kind::torus: torus(t, n, rng, progress); break;
+    case Point_kind::planes: planes(t, n, options.planes, rng, progress); break;
+    case Point_kind::torus: torus(t, n, noise, rng, progress); break;
   }
   if (progress) progress->finish();
   return t;

@@ -437,6 +437,25 @@ TEST_CASE("files: messages name the real problem", "[cli][files]") {
       CHECK(huge.err.find("bad_alloc") == std::string::npos);
     }
   }
+  SECTION("generate --noise: a number in [0, 1], sphere and torus only") {
+    CHECK(cli("generate torus 100 --noise 0.05 --seed 1 -o t.txt").status == 0);
+    for (const std::string x : {"-0.1", "2", "nan", "x", "0.1.2"}) {
+      const auto bad = cli("generate torus 100 --noise " + x);
+      CHECK(bad.status == 2);
+      CHECK(bad.err.find("invalid noise") != std::string::npos);
+    }
+    const auto cube = cli("generate uniform 100 --noise 0.1");
+    CHECK(cube.status == 2);
+    CHECK(cube.err.find("sphere and torus only") != std::string::npos);
+  }
+  SECTION("generate --planes: 2 to 1000, kind planes only") {
+    CHECK(cli("generate planes 100 --planes 2 --seed 1 -o p.txt").status == 0);
+    for (const std::string p : {"1", "1001", "99999999999999999999", "-2", "x"}) {
+      const auto bad = cli("generate planes 100 --planes " + p);
+      CHECK(bad.status == 2);
+    }
+    CHECK(cli("generate uniform 100 --planes 2").err.find("kind planes only") != std::string::npos);
+  }
   SECTION("a non-finite point is named once, as the file numbers it") {
     const auto r = cli.with_stdin("triangulate -", "0 0\n1 0\nnan 1\n1 1\n");
     CHECK(r.status == 1);

@@ -198,3 +198,76 @@ TEST_CASE("generators: torus points lie on the torus surface", "[generate]") {
     CHECK(highest > 1.2);
   }
 }
+
+TEST_CASE("generators: noise 0 is the noiseless generator, bit for bit", "[generate]") {
+  for (int d = 2; d <= 6; ++d)
+    for (auto kind : all_kinds) {
+      INFO("kind " << dewall::io::point_kind_name(kind) << ", dimension " << d);
+      const auto a = generate_points(kind, 300, d, 77);
+      const auto b = generate_points(kind, 300, d, 77, dewall::io::Generator_options{.noise = 0});
+      REQUIRE(a.coordinates.size() == b.coordinates.size());
+      CHECK(std::memcmp(a.coordinates.data(), b.coordinates.data(), a.coordinates.size() * sizeof(double)) == 0);
+    }
+}
+
+TEST_CASE("generators: noisy torus and sphere points lie in the expected shell", "[generate]") {
+  // Distance to the core (torus: the circle of radius 1; sphere: the centre)
+  // is radius · (1 + noise · z), z standard normal: its relative offsets have
+  // mean 0 and standard deviation `noise`, and none is beyond 6 σ (chance
+  // about 2e-9 per point).
+  constexpr double noise = 0.05;
+  for (int d = 2; d <= 6; ++d)
+    for (auto kind : {Point_kind::torus, Point_kind::sphere}) {
+      INFO("kind " << dewall::io::point_kind_name(kind) << ", dimension " << d);
+      const std::size_t n = 4000;
+      const auto t = generate_points(kind, n, d, 19, dewall::io::Generator_options{.noise = noise});
+      REQUIRE(t.size() == n);
+      const double radius = kind == Point_kind::torus ? 0.3 : 1.0;
+      double sum = 0, sum2 = 0;
+      for (std::size_t i = 0; i < n; ++i) {
+        double s = 0;
+        if (kind == Point_kind::torus) {
+          const double rho = std::hypot(coordinate(t, i, 0), coordinate(t, i, 1)) - 1.0;
+          s = rho * rho;
+          for (int j = 2; j < d; ++j) s += coordinate(t, i, j) * coordinate(t, i, j);
+        } else {
+          for (int j = 0; j < d; ++j) s += coordinate(t, i, j) * coordinate(t, i, j);
+        }
+        const double offset = std::sqrt(s) / radius - 1;  // noise · z
+        REQUIRE(std::abs(offset) <= 6 * noise);
+        sum += offset, sum2 += offset * offset;
+      }
+      const double mean = sum / double(n), sigma = std::sqrt(sum2 / double(n) - mean * mean);
+      // Standard errors at n = 4000: the mean 0.05 / 63 ≈ 8e-4, σ about 1.1 %.
+      CHECK(std::abs(mean) < 0.004);
+      CHECK(std::abs(sigma - noise) < 0.1 * noise);
+    }
+}
+
+TEST_CASE("generators: noise is checked", "[generate]") {
+  using dewall::io::Generator_options;
+  CHECK_THROWS_WITH(generate_points(Point_kind::uniform, 100, 3, 0, Generator_options{.noise = 0.1}),
+                    Catch::Contains("sphere and torus only"));
+  CHECK_THROWS_AS(generate_points(Point_kind::torus, 100, 3, 0, Generator_options{.noise = -0.1}), std::invalid_argument);
+  CHECK_THROWS_AS(generate_points(Point_kind::torus, 100, 3, 0, Generator_options{.noise = 1.5}), std::invalid_argument);
+  CHECK_THROWS_AS(generate_points(Point_kind::sphere, 100, 3, 0, Generator_options{.noise = std::nan("")}),
+                  std::invalid_argument);
+}
+
+TEST_CASE("generators: planes with a chosen count", "[generate]") {
+  for (int d = 2; d <= 6; ++d)
+    for (int count : {2, 3, 20}) {
+      INFO("dimension " << d << ", " << count << " planes");
+      const auto t = generate_points(Point_kind::planes, 1000, d, 9, dewall::io::Generator_options{.planes = count});
+      std::set<double> heights;
+      for (std::size_t i = 0; i < t.size(); ++i) heights.insert(coordinate(t, i, d - 1));
+      CHECK(heights.size() == static_cast<std::size_t>(count));
+      CHECK(*heights.begin() == 0.0);
+      CHECK(*heights.rbegin() == 1.0);
+    }
+  using dewall::io::Generator_options;
+  CHECK_THROWS_AS(generate_points(Point_kind::planes, 100, 3, 0, Generator_options{.planes = 1}), std::invalid_argument);
+  CHECK_THROWS_AS(generate_points(Point_kind::planes, 100, 3, 0, Generator_options{.planes = 1001}), std::invalid_argument);
+  CHECK_THROWS_WITH(generate_points(Point_kind::uniform, 100, 3, 0, Generator_options{.planes = 2}),
+                    Catch::Contains("kind planes only"));
+}

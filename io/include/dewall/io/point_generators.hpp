@@ -34,6 +34,23 @@ enum class Point_kind {
   torus,           ///< uniform on a torus surface (R = 1, r = 0.3), like a scanned object's surface
 };
 
+/// Options of a generator beyond kind, size, dimension and seed.
+struct Generator_options {
+  /// Normal noise off the surface, for `sphere` and `torus` only: each point
+  /// moves along the surface normal by noise · r · z, z a standard normal
+  /// deviate and r the surface's radius (sphere: 1; torus: the tube radius
+  /// 0.3). So the distance to the centre (sphere) or to the core circle (torus)
+  /// is r · (1 + noise · z): a shell of standard deviation noise · r, the same
+  /// shape at every n (relative to the radius, not to the point spacing). 0, the
+  /// default, gives exactly the points of the overload without options.
+  /// \pre 0 ≤ noise ≤ 1, finite.
+  double noise = 0;
+  /// The number of hyperplanes of kind `planes`; 0, the default, chooses
+  /// about log2(n) / 2 of them (2 … 8). 2 is the paper's Figure 7.
+  /// \pre 0 or 2 … 1000; 0 for every other kind.
+  int planes = 0;
+};
+
 /// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
 /// "lattice-sphere", "planes", "torus"), or nothing.
 std::optional<Point_kind> parse_point_kind(std::string_view name);
@@ -49,5 +66,11 @@ std::string point_kind_names();
 /// \throws std::invalid_argument for a dimension outside 2 … 6 or n < dimension + 1.
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
                             Progress* progress = nullptr);
+/// As above, with `options` (Generator_options::noise).
+/// \throws std::invalid_argument also for a noise outside [0, 1], a non-zero
+/// noise for a kind other than sphere and torus, or a plane count other than 0
+/// or 2 … 1000 (non-zero for kind planes only).
+Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
+                            const Generator_options& options, Progress* progress = nullptr);
 
 }  // namespace dewall::io

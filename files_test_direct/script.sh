@@ -1,0 +1,1 @@
+$DEWALL triangulate p.txt -o /proc/self/fd/1 | cat > piped.txt

@@ -1,0 +1,1 @@
+$DEWALL draw p.txt s.txt > full

@@ -1,0 +1,1 @@
+cat q.txt | $DEWALL draw /dev/stdin s.txt
