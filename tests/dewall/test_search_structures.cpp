@@ -228,3 +228,58 @@ TEMPLATE_TEST_CASE_SIG("the outer-side test never drops a box holding an outer p
   }
   CHECK(pruned > 1000);
 }
+
+TEMPLATE_TEST_CASE_SIG("clipping to the outer side keeps every outer point, and nothing for a lattice's side (GMP)",
+                       "[search][gmp]", ((int D), D), 2, 3, 4) {
+  std::mt19937_64 rng(20261125 + D);
+  const Coords<D> lo{}, hi = [] {
+    Coords<D> h;
+    h.fill(1.0);
+    return h;
+  }();
+  std::uniform_real_distribution<double> u(0, 1);
+  // Random faces, some axis-aligned with integer-like coordinates, some nearly so.
+  std::size_t outer_points = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    std::array<Coords<D>, D> s;
+    const int kind = trial % 3;
+    for (auto& p : s)
+      for (int j = 0; j < D; ++j) p[j] = kind == 0 ? u(rng) : std::floor(u(rng) * 8) / 8;
+    if (kind > 0)
+      for (auto& p : s) p[D - 1] = kind == 1 ? 0.25 : 0.25 + 1e-17 * u(rng);  // on (or next to) a lattice plane
+    std::array<const Coords<D>*, D> face;
+    for (int i = 0; i < D; ++i) face[i] = &s[i];
+    const detail::Face_side_filter<D> filter(face, lo, hi);
+    Coords<D> clo = lo, chi = hi;
+    const bool any = filter.clip_to_outer_side(clo, chi);
+    for (int k = 0; k < 40; ++k) {
+      Coords<D> x;
+      for (int j = 0; j < D; ++j) x[j] = kind == 0 ? u(rng) : std::floor(u(rng) * 8) / 8;
+      if (k == 0) x = s[0], x[D - 1] = 0.25;  // a point on the face's plane
+      std::array<kernel::Point_d<D>, D + 1> p;
+      for (int i = 0; i < D; ++i) p[i] = as_point<D>(s[i]);
+      p[D] = as_point<D>(x);
+      if (test::gmp_orientation<D>(p) != kernel::POSITIVE) continue;
+      ++outer_points;
+      REQUIRE(any);
+      for (int j = 0; j < D; ++j) REQUIRE((clo[j] <= x[j] && x[j] <= chi[j]));
+    }
+  }
+  CHECK(outer_points > 10000);
+
+  // A face in the plane x_{D-1} = 0 (the box's side), outer side below it: nothing to scan.
+  std::array<Coords<D>, D> side{};
+  for (int i = 1; i < D; ++i) side[i][i - 1] = 1.0 / 8;
+  std::array<const Coords<D>*, D> face;
+  for (int i = 0; i < D; ++i) face[i] = &side[i];
+  for (const bool flip : {false, true}) {
+    if (flip) std::swap(face[0], face[1]);
+    const detail::Face_side_filter<D> filter(face, lo, hi);
+    std::array<kernel::Point_d<D>, D + 1> p;
+    for (int i = 0; i < D; ++i) p[i] = as_point<D>(*face[i]);
+    p[D] = as_point<D>(hi);
+    const bool inside_is_outer = test::gmp_orientation<D>(p) == kernel::POSITIVE;
+    Coords<D> clo = lo, chi = hi;
+    CHECK(filter.clip_to_outer_side(clo, chi) == inside_is_outer);
+  }
+}

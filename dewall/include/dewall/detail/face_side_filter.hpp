@@ -99,14 +99,19 @@ class Face_side_filter {
       const Interval dl = Interval(lo[j]) - Interval(origin_[j]);
       const Interval dh = Interval(hi[j]) - Interval(origin_[j]);
       const Interval d(std::min(dl.lo(), dh.lo()), std::max(dl.hi(), dh.hi()));
-      worst[j] = ((d * Interval(cofactor_[j])) + Interval(d.magnitude()) * Interval(error_[j])).hi();
+      // A term known to be 0 (an axis-aligned face) stays exactly 0: the outward
+      // rounding would make it 2^-1074, which turns the strict test below for a
+      // hull face's hyperplane (a lattice's side) into a scan of that side.
+      worst[j] = cofactor_[j] == 0 && error_[j] == 0
+                     ? 0.0
+                     : ((d * Interval(cofactor_[j])) + Interval(d.magnitude()) * Interval(error_[j])).hi();
     }
     for (int k = 0; k < D; ++k) {
       const bool positive = cofactor_[k] > error_[k], negative = cofactor_[k] < -error_[k];
       if (!positive && !negative) continue;
       Interval u(0.0);
       for (int j = 0; j < D; ++j)
-        if (j != k) u += Interval(worst[j]);
+        if (j != k && worst[j] != 0) u += Interval(worst[j]);
       if (positive) {
         // d_k > −u/(Ĉ_k − e_k) when u > 0; d_k > 0 when u ≤ 0.
         const double limit = u.hi() > 0

@@ -149,7 +149,7 @@ class Simplex_search {
     while (from != 0) {
       const Node& parent = tree.node(tree.node(from).parent);
       const Index sibling = parent.first_child + (parent.first_child == from ? 1 : 0);
-      visit_subtree(sibling, rank, best, may_hold_better, consider);
+      visit_subtree(sibling, rank, may_hold_better, consider);
       from = tree.node(from).parent;
       if (!best && !clip()) return std::nullopt;
     }
@@ -187,8 +187,7 @@ class Simplex_search {
   /// first, skipping the nodes `may_hold_better` rules out (tested when a node
   /// is reached, so the ball found meanwhile applies).
   template <class May_hold_better, class Consider>
-  void visit_subtree(Index top, const Pencil_rank<D>& rank, const std::optional<Index>& best, May_hold_better& may_hold_better,
-                     Consider& consider) {
+  void visit_subtree(Index top, const Pencil_rank<D>& rank, May_hold_better& may_hold_better, Consider& consider) {
     stack_.assign(1, top);
     while (!stack_.empty()) {
       const Node& n = ps_.tree.node(stack_.back());
@@ -199,10 +198,11 @@ class Simplex_search {
         for (Index q = n.begin; q < n.end; ++q) consider(q);
         continue;
       }
-      // Once there is a best, its ball prunes whatever the order.
+      // The nearer child first, also once there is a best: a better point found
+      // early shrinks the ball for the rest (fewer nodes and candidates, measured).
       const Index c = n.first_child;
-      const bool second_first = !best && rank.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
-                                                 rank.box_key(ps_.tree.node(c).lo, ps_.tree.node(c).hi);
+      const bool second_first = rank.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
+                                rank.box_key(ps_.tree.node(c).lo, ps_.tree.node(c).hi);
       stack_.push_back(second_first ? c : c + 1);  // popped last
       stack_.push_back(second_first ? c + 1 : c);
     }
