@@ -149,7 +149,7 @@ class Simplex_search {
     while (from != 0) {
       const Node& parent = tree.node(tree.node(from).parent);
       const Index sibling = parent.first_child + (parent.first_child == from ? 1 : 0);
-      visit_subtree(sibling, rank, may_hold_better, consider);
+      visit_subtree(sibling, rank, best, may_hold_better, consider);
       from = tree.node(from).parent;
       if (!best && !clip()) return std::nullopt;
     }
@@ -184,10 +184,11 @@ class Simplex_search {
 
  private:
   /// Depth first through the subtree at `top`, the child of smaller pencil key
-  /// first, skipping the nodes `may_hold_better` rules out (tested when a node
+  /// first while there is no `best`, skipping the nodes `may_hold_better` rules out (tested when a node
   /// is reached, so the ball found meanwhile applies).
   template <class May_hold_better, class Consider>
-  void visit_subtree(Index top, const Pencil_rank<D>& rank, May_hold_better& may_hold_better, Consider& consider) {
+  void visit_subtree(Index top, const Pencil_rank<D>& rank, const std::optional<Index>& best,
+                     May_hold_better& may_hold_better, Consider& consider) {
     stack_.assign(1, top);
     while (!stack_.empty()) {
       const Node& n = ps_.tree.node(stack_.back());
@@ -198,10 +199,11 @@ class Simplex_search {
         for (Index q = n.begin; q < n.end; ++q) consider(q);
         continue;
       }
-      // The nearer child first, also once there is a best: a better point found
-      // early shrinks the ball for the rest (fewer nodes and candidates, measured).
+      // The nearer child first until there is a best; then its ball prunes, and
+      // ranking both children cost more than it saved (10^5 uniform points: 2.5
+      // against 2.2 CPU seconds, 7 % fewer candidates).
       const Index c = n.first_child;
-      const bool second_first = rank.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
+      const bool second_first = !best && rank.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
                                 rank.box_key(ps_.tree.node(c).lo, ps_.tree.node(c).hi);
       stack_.push_back(second_first ? c : c + 1);  // popped last
       stack_.push_back(second_first ? c + 1 : c);
