@@ -104,7 +104,7 @@ class Simplex_search {
     };
     // Far searches (no outer point near the face: a hull face, or one whose
     // sphere is large) are confined to the part of the bounding box on the
-    // outer side of f, computed once the first leaf gave no candidate. A
+    // outer side of f, computed when a scan ends without a best. A
     // hull face whose hyperplane carries other points (a lattice's side) has
     // no such part: answered without a scan.
     Coords<D> outer_lo = tree.lower(), outer_hi = tree.upper();
