@@ -184,8 +184,8 @@ class Simplex_search {
 
  private:
   /// Depth first through the subtree at `top`, the child of smaller pencil key
-  /// first while there is no `best`, skipping the nodes `may_hold_better` rules out (tested when a node
-  /// is reached, so the ball found meanwhile applies).
+  /// first while there is no `best`, skipping the nodes `may_hold_better` rules
+  /// out (tested when a node is reached, so the ball found meanwhile applies).
   template <class May_hold_better, class Consider>
   void visit_subtree(Index top, const Pencil_rank<D>& rank, const std::optional<Index>& best,
                      May_hold_better& may_hold_better, Consider& consider) {
