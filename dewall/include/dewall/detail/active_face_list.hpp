@@ -22,6 +22,10 @@ class Active_face_list {
   /// Returns true when the face was inserted.
   bool update(const Face<D>& f) {
     const Face<D> key = face_key<D>(f);
+    std::uint32_t order = 0;  // f[i] = key[(order >> (3i)) & 7]: the orientation, kept in 3 bits per vertex
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j)
+        if (key[j] == f[i]) order |= static_cast<std::uint32_t>(j) << (3 * i);
     if (slots_.empty() || 2 * (used_ + 1) > slots_.size()) rehash();
     std::size_t i = face_hash<D>(key) & mask_;
     std::size_t tomb = npos;
@@ -30,7 +34,7 @@ class Active_face_list {
       if (s.state == EMPTY) break;
       if (s.state == TOMB) {
         if (tomb == npos) tomb = i;
-      } else if (s.key == key) {
+      } else if (same(s.key, key)) {
         s.state = TOMB;
         --live_;
         return false;
@@ -40,7 +44,7 @@ class Active_face_list {
       tomb = i;
       ++used_;
     }
-    slots_[tomb] = Slot{key, f, FULL};
+    slots_[tomb] = Slot{key, order, FULL};
     ++live_;
     pending_.push_back(key);
     return true;
@@ -55,10 +59,12 @@ class Active_face_list {
       for (;; i = (i + 1) & mask_) {
         Slot& s = slots_[i];
         if (s.state == EMPTY) break;  // closed since it was pushed
-        if (s.state == FULL && s.key == key) {
+        if (s.state == FULL && same(s.key, key)) {
           s.state = TOMB;
           --live_;
-          return s.face;
+          Face<D> f;
+          for (int v = 0; v < D; ++v) f[v] = key[(s.order >> (3 * v)) & 7];
+          return f;
         }
       }
     }
@@ -66,11 +72,19 @@ class Active_face_list {
 
  private:
   enum State : std::uint8_t { EMPTY, TOMB, FULL };
+  // 16 bytes in 3D (the table is probed at random: its size is its cost).
   struct Slot {
     Face<D> key{};
-    Face<D> face{};
-    State state = EMPTY;
+    std::uint32_t order : 24 = 0;
+    State state : 8 = EMPTY;
   };
+  static_assert(3 * D <= 24);
+  // Element by element: std::array's == calls memcmp here.
+  static bool same(const Face<D>& a, const Face<D>& b) {
+    for (int i = 0; i < D; ++i)
+      if (a[i] != b[i]) return false;
+    return true;
+  }
   static constexpr std::size_t npos = ~std::size_t{0};
 
   void rehash() {

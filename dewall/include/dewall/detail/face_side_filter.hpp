@@ -16,6 +16,7 @@
 // nothing and go to the kernel's exact predicate.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -68,7 +69,7 @@ class Face_side_filter {
     // The per-query bound below with |x_j| replaced by its largest value in the box.
     double magnitude = 0, carried = 0;
     for (int j = 0; j < D; ++j) {
-      const double reach = std::fmax(std::fabs(lo[j] - origin_[j]), std::fabs(hi[j] - origin_[j]));
+      const double reach = std::max(std::fabs(lo[j] - origin_[j]), std::fabs(hi[j] - origin_[j]));
       magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);
       carried += reach * error_[j];
     }

@@ -48,6 +48,7 @@ class Kd_tree {
   /// \pre coords is not empty; leaf_size ≥ 1.
   Kd_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) : leaf_size_(std::max<std::size_t>(1, leaf_size)) {
     order_.resize(coords.size());
+    leaf_of_.resize(coords.size());
     std::iota(order_.begin(), order_.end(), Index{0});
     nodes_.reserve(2 * (coords.size() / leaf_size_ + 1));
     nodes_.push_back({});
@@ -62,11 +63,7 @@ class Kd_tree {
   std::size_t leaf_count() const { return (nodes_.size() + 1) / 2; }
   std::size_t leaf_size() const { return leaf_size_; }
   /// The leaf holding the point at position p.
-  Index leaf_of(Index p) const {
-    Index at = 0;
-    while (!nodes_[at].is_leaf()) at = p < nodes_[nodes_[at].first_child].end ? nodes_[at].first_child : nodes_[at].first_child + 1;
-    return at;
-  }
+  Index leaf_of(Index p) const { return leaf_of_[p]; }
   /// The bounding box of all points.
   const Coords<D>& lower() const { return nodes_[0].lo; }
   const Coords<D>& upper() const { return nodes_[0].hi; }
@@ -89,7 +86,10 @@ class Kd_tree {
       if (n.hi[j] - n.lo[j] > n.hi[axis] - n.lo[axis]) axis = j;
     // A box of zero width holds points with equal approximate coordinates
     // (distinct only in a kernel with more precise points): a leaf, whatever its size.
-    if (end - begin <= leaf_size_ || !(n.hi[axis] > n.lo[axis])) return;
+    if (end - begin <= leaf_size_ || !(n.hi[axis] > n.lo[axis])) {
+      std::fill(leaf_of_.begin() + begin, leaf_of_.begin() + end, at);
+      return;
+    }
     const Index middle = begin + (end - begin) / 2;
     // Ties on the axis are broken by the next axes: on a lattice half the
     // points of the median plane go to each side, and an arbitrary half would
@@ -112,6 +112,7 @@ class Kd_tree {
 
   std::size_t leaf_size_ = 8;
   std::vector<Index> order_;
+  std::vector<Index> leaf_of_;  // by position: a search starts at a face vertex's leaf
   std::vector<Node> nodes_;
 };
 

@@ -8,10 +8,11 @@
 // perturbation this is a strict total order on the outer points (the spheres
 // through f form a pencil), so the result is unique and equals CGAL's.
 //
-// Search. From the leaf of a vertex of f up to the root, each time through the
+// Search. From the subtree around a vertex of f upwards, each time through the
 // subtree on the other side, depth first with the child of smaller pencil key
 // first (pencil_rank.hpp: about the smallest sphere parameter t a point of the
-// node could have). The apex is usually among the first outer points met, so
+// node could have), until the ball of the best lies inside the box of the
+// subtree searched so far (no point outside it can then be better). The apex is usually among the first outer points met, so
 // the ball of sphere(f, b) is small from the start. A node is skipped when a
 // floating-point test with a proven margin shows that its box holds no point
 // strictly on the outer side of f (face_side_filter.hpp) or does not meet the
@@ -117,9 +118,9 @@ class Simplex_search {
     };
     auto may_hold_better = [&](const Node& n) {
       refresh_sphere();
-      if (!side_filter.box_may_hold_outer(n.lo, n.hi)) return false;
+      if (best && !ball.may_meet(n.lo, n.hi)) return false;  // the test that prunes most, first
       if (clipped && !boxes_meet(n.lo, n.hi, outer_lo, outer_hi)) return false;
-      return !best || ball.may_meet(n.lo, n.hi);
+      return side_filter.box_may_hold_outer(n.lo, n.hi);
     };
     // The neighbourhood of f first: the points of the smallest subtree around
     // the leaf of f_0 holding `near_points`, the one of smallest pencil rank
@@ -129,12 +130,15 @@ class Simplex_search {
     // exact `consider`.
     Index from = tree.leaf_of(f[0]);
     while (from != 0 && tree.node(from).end - tree.node(from).begin < near_points) from = tree.node(from).parent;
-    {
-      const Node& near = tree.node(from);
-      Index lead = near.begin;
+    // A run of consecutive points (a leaf, or the first subtree), the one of
+    // smallest pencil rank in the current ball first: it is usually the best
+    // of the run, so the best changes at most once (each change builds a sphere).
+    auto scan = [&](Index begin, Index end) {
+      Index lead = begin;
       double lead_rank = std::numeric_limits<double>::infinity();
       if (rank.valid())
-        for (Index q = near.begin; q < near.end; ++q) {
+        for (Index q = begin; q < end; ++q) {
+          if (best && ball.bounded && !in_box(ball, q)) continue;
           const double t = rank(ps_.coords[q]);
           if (t < lead_rank && !is_vertex(f, q)) {  // a vertex's rank is 0/0 up to rounding
             lead_rank = t;
@@ -142,16 +146,28 @@ class Simplex_search {
           }
         }
       consider(lead);
-      refresh_sphere();  // the lead is usually the apex: its ball prunes the rest
-      for (Index q = near.begin; q < near.end; ++q) consider(q);  // contiguous: no tree walk
-    }
-    if (!best && !clip()) return std::nullopt;
+      refresh_sphere();  // its ball prunes the rest
+      for (Index q = begin; q < end; ++q) consider(q);
+    };
+    scan(tree.node(from).begin, tree.node(from).end);
+    // Every point of the subtree at `from` has been considered. Any other
+    // point lies outside the open interior of that subtree's box (at the
+    // ancestor where the two part, the median split puts the sibling's points
+    // on or beyond the side of this box): once that interior holds the closed
+    // ball of the best, no point outside the subtree can be better.
+    auto ball_is_inside = [&](const Node& n) {
+      refresh_sphere();
+      if (!ball.bounded) return false;
+      for (int j = 0; j < D; ++j)
+        if (!(n.lo[j] < ball.lo[j] && ball.hi[j] < n.hi[j])) return false;
+      return true;
+    };
     while (from != 0) {
+      if (best ? ball_is_inside(tree.node(from)) : !clip()) break;
       const Node& parent = tree.node(tree.node(from).parent);
       const Index sibling = parent.first_child + (parent.first_child == from ? 1 : 0);
-      visit_subtree(sibling, rank, best, may_hold_better, consider);
+      visit_subtree(sibling, rank, best, may_hold_better, scan);
       from = tree.node(from).parent;
-      if (!best && !clip()) return std::nullopt;
     }
     return best;
   }
@@ -186,9 +202,9 @@ class Simplex_search {
   /// Depth first through the subtree at `top`, the child of smaller pencil key
   /// first while there is no `best`, skipping the nodes `may_hold_better` rules
   /// out (tested when a node is reached, so the ball found meanwhile applies).
-  template <class May_hold_better, class Consider>
+  template <class May_hold_better, class Scan>
   void visit_subtree(Index top, const Pencil_rank<D>& rank, const std::optional<Index>& best,
-                     May_hold_better& may_hold_better, Consider& consider) {
+                     May_hold_better& may_hold_better, Scan& scan) {
     stack_.assign(1, top);
     while (!stack_.empty()) {
       const Node& n = ps_.tree.node(stack_.back());
@@ -196,7 +212,7 @@ class Simplex_search {
       if (!may_hold_better(n)) continue;
       ++stats_.nodes_visited;
       if (n.is_leaf()) {
-        for (Index q = n.begin; q < n.end; ++q) consider(q);
+        scan(n.begin, n.end);
         continue;
       }
       // The nearer child first until there is a best; then its ball prunes, and

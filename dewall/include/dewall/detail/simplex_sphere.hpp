@@ -32,6 +32,7 @@
 // scaled back.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -67,9 +68,8 @@ struct Ball_box {
     if (!bounded) return true;
     double gap2 = 0;
     for (int j = 0; j < D; ++j) {
-      const double g = box_lo[j] > centre_hi[j]   ? box_lo[j] - centre_hi[j]
-                       : centre_lo[j] > box_hi[j] ? centre_lo[j] - box_hi[j]
-                                                  : 0.0;
+      // At most one difference is positive (lo ≤ hi on both sides); branch-free.
+      const double g = std::max(std::max(box_lo[j] - centre_hi[j], centre_lo[j] - box_hi[j]), 0.0);
       gap2 += g * g;
     }
     return !(gap2 > radius2_limit);
@@ -86,7 +86,7 @@ class Simplex_sphere {
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) {
         y[i][j] = (*s[i + 1])[j] - origin_[j];
-        largest = std::fmax(largest, std::fabs(y[i][j]));
+        largest = std::max(largest, std::fabs(y[i][j]));
       }
     if (!(largest >= 0x1p-50 && largest <= 0x1p50) && std::isfinite(largest) && largest > 0) {
       exponent_ = std::ilogb(largest);
@@ -99,10 +99,10 @@ class Simplex_sphere {
       double l = 0;
       for (int j = 0; j < D; ++j) {
         l += y[i][j] * y[i][j];
-        col_max[j] = std::fmax(col_max[j], std::fabs(y[i][j]));
+        col_max[j] = std::max(col_max[j], std::fabs(y[i][j]));
       }
       lift[i] = l;
-      col_max[D] = std::fmax(col_max[D], l);
+      col_max[D] = std::max(col_max[D], l);
     }
     for (int j = 0; j < D; ++j)
       if (!(col_max[j] >= eb::min_column_max && col_max[j] <= eb::max_column_max)) return;
@@ -125,7 +125,7 @@ class Simplex_sphere {
     if (box_.bounded) {  // the per-query bound below, for the worst query in the box
       double magnitude = 0, carried = 0, lifted = 0;
       for (int j = 0; j < D; ++j) {
-        double reach = std::fmax(std::fabs(box_.lo[j] - origin_[j]), std::fabs(box_.hi[j] - origin_[j]));
+        double reach = std::max(std::fabs(box_.lo[j] - origin_[j]), std::fabs(box_.hi[j] - origin_[j]));
         if (exponent_ != 0) reach = std::ldexp(reach, -exponent_);
         lifted += reach * reach;
         magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);

@@ -38,16 +38,16 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   Wall_builder<K> builder(ps, options.parallel_depth, budget);
   std::vector<Index> all(ps.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
-  std::vector<Built_simplex<D>> built;
+  Built_simplices<D> built;
   builder.run(all, built);
   simplices.reserve(simplices.size() + built.size());
   if (wall_levels) wall_levels->reserve(wall_levels->size() + built.size());
-  for (const auto& s : built) {
+  built.for_each([&](const Built_simplex<D>& s) {
     std::array<std::uint32_t, D + 1> out;
     for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s.vertices[i]]);
     simplices.push_back(out);
     if (wall_levels) wall_levels->push_back(s.wall_level);
-  }
+  });
 
   Statistics st;
   st.input_points = points.size();

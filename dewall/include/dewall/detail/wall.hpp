@@ -16,7 +16,7 @@
 //
 // Output order is the depth-first order (wall, then P1's part, then P2's)
 // whatever the number of threads: parallel subproblems write to their own
-// buffers, appended in that order.
+// blocks of output, appended in that order.
 #pragma once
 
 #include <tbb/parallel_invoke.h>
@@ -47,6 +47,42 @@ struct Built_simplex {
   std::uint8_t wall_level;
 };
 
+/// The built simplices in output order, in blocks of fixed capacity: a
+/// push never moves earlier simplices, and the parallel recursion joins its
+/// subproblems' output by moving blocks, not simplices (profile of 10^5
+/// uniform points: copying between growing buffers and the page faults of
+/// their new memory took 15 % of the run).
+template <int D>
+class Built_simplices {
+ public:
+  void push_back(const Built_simplex<D>& s) {
+    if (blocks_.empty() || blocks_.back().size() == block_capacity) {
+      blocks_.emplace_back();
+      blocks_.back().reserve(block_capacity);
+    }
+    blocks_.back().push_back(s);
+    ++size_;
+  }
+  /// Appends `other`'s simplices after this one's.
+  void append(Built_simplices&& other) {
+    for (auto& b : other.blocks_) blocks_.push_back(std::move(b));
+    size_ += other.size_;
+    other.blocks_.clear();
+    other.size_ = 0;
+  }
+  std::size_t size() const { return size_; }
+  template <class F>
+  void for_each(F&& f) const {
+    for (const auto& b : blocks_)
+      for (const auto& s : b) f(s);
+  }
+
+ private:
+  static constexpr std::size_t block_capacity = 8192;
+  std::vector<std::vector<Built_simplex<D>>> blocks_;
+  std::size_t size_ = 0;
+};
+
 template <class K>
 class Wall_builder {
   static constexpr int D = K::dimension;
@@ -59,7 +95,7 @@ class Wall_builder {
 
   /// Appends the simplices of the triangulation of `points` to `out`.
   /// \throws Search_budget_spent when the budget is spent.
-  void run(std::span<Index> points, std::vector<Built_simplex<D>>& out) {
+  void run(std::span<Index> points, Built_simplices<D>& out) {
     Simplex_search<K> search(ps_);
     Wall_stats stats;
     recurse(points, Active_face_list<D>{}, 0, true, out, search, stats);
@@ -71,7 +107,7 @@ class Wall_builder {
 
  private:
   void recurse(std::span<Index> points, Active_face_list<D> afl, std::size_t depth, bool top,
-               std::vector<Built_simplex<D>>& out, Simplex_search<K>& search, Wall_stats& stats) {
+               Built_simplices<D>& out, Simplex_search<K>& search, Wall_stats& stats) {
     if (!top && afl.empty()) return;
     stats.max_depth = std::max(stats.max_depth, depth);
     std::size_t side1_size = 0;
@@ -131,8 +167,8 @@ class Wall_builder {
     if (top) stats.first_wall_simplices = out.size() - before;
     const auto p1 = points.first(side1_size), p2 = points.subspan(side1_size);
     if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
-      std::vector<Built_simplex<D>> out1, out2;
-      auto task = [&](std::span<Index> p, Active_face_list<D>& a, std::vector<Built_simplex<D>>& o) {
+      Built_simplices<D> out1, out2;
+      auto task = [&](std::span<Index> p, Active_face_list<D>& a, Built_simplices<D>& o) {
         // A worker thread has its own floating-point environment (floating_point.hpp).
         const kernel::Fp_environment_guard guard;
         Simplex_search<K> s(ps_);
@@ -141,8 +177,8 @@ class Wall_builder {
         merge(s.stats(), st);
       };
       tbb::parallel_invoke([&] { task(p1, afl1, out1); }, [&] { task(p2, afl2, out2); });
-      out.insert(out.end(), out1.begin(), out1.end());
-      out.insert(out.end(), out2.begin(), out2.end());
+      out.append(std::move(out1));
+      out.append(std::move(out2));
     } else {
       recurse(p1, std::move(afl1), depth + 1, false, out, search, stats);
       recurse(p2, std::move(afl2), depth + 1, false, out, search, stats);
