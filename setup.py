@@ -43,4 +43,6 @@ class CMakeBuild(build_ext):
         shutil.copyfile(built, target)
 
 
-setup(ext_modules=[CMakeExtension("dewall._dewall")], cmdclass={"build_ext": CMakeBuild})
+# build/ is also the CMake build of ./test: keep setuptools' files in a folder of their own.
+setup(ext_modules=[CMakeExtension("dewall._dewall")], cmdclass={"build_ext": CMakeBuild},
+      options={"build": {"build_base": "build/python-package"}})

@@ -92,8 +92,10 @@ class Delaunay:
         distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`)."""
         return self._triangulation.statistics
 
-    def find_simplex(self, xi):
+    def find_simplex(self, xi, bruteforce=False, tol=None):
         """The simplex containing each point of xi (shape (..., ndim)), -1 outside the hull.
+
+        bruteforce and tol are scipy's; they are accepted and ignored: the test is exact.
 
         Exact: decided by the exact orientation predicate, with no tolerance. A point on a
         face shared by several simplices gets one of them; a point outside the hull by

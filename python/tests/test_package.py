@@ -45,7 +45,7 @@ def test_statistics(rng):
 
 
 def test_gil_released_during_a_large_triangulation():
-    points = dewall.generate("uniform", 150_000, dim=3, seed=1)
+    points = dewall.generate("uniform", 60_000, dim=3, seed=1)
     done = threading.Event()
     ticks = 0
 
