@@ -4,7 +4,7 @@ import secrets
 
 from . import _dewall
 
-KINDS = ("uniform", "ball", "sphere", "bubbles", "grid", "lattice-sphere", "planes", "torus")
+KINDS = _dewall.point_kinds  # the library's names: ("uniform", "ball", …)
 
 
 def generate(kind, n, dim=3, seed=None):

@@ -33,6 +33,7 @@
 #include "dewall/dewall.hpp"
 #include "dewall/error.hpp"
 #include "dewall/io/point_generators.hpp"
+#include "dewall/kernel/dimension.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/locate.hpp"
 
@@ -46,19 +47,6 @@ using Kernel = dewall::kernel::Filtered_kernel_d<D>;
 
 // NumPy's int32 (scipy's index type) holds every index below 2^31.
 constexpr std::size_t max_index = std::numeric_limits<std::int32_t>::max();
-
-/// f(std::integral_constant<int, D>{}) for D = 2 … 6 known at run time.
-template <class F>
-decltype(auto) with_dimension(int d, F&& f) {
-  switch (d) {
-    case 2: return f(std::integral_constant<int, 2>{});
-    case 3: return f(std::integral_constant<int, 3>{});
-    case 4: return f(std::integral_constant<int, 4>{});
-    case 5: return f(std::integral_constant<int, 5>{});
-    case 6: return f(std::integral_constant<int, 6>{});
-  }
-  throw py::value_error("dimension " + std::to_string(d) + " is not supported (2 to 6)");
-}
 
 /// The element types the module takes: NumPy's kind character and item size.
 struct Element_type {
@@ -193,7 +181,7 @@ class Triangulation {
   /// For each input point, the input index of the vertex that stands for it
   /// (itself unless it duplicates an earlier point).
   py::array first_occurrences() const {
-    return with_dimension(dimension(), [&](auto d) {
+    return dewall::kernel::with_dimension(dimension(), [&](auto d) {
       std::vector<std::uint32_t> first;
       {
         py::gil_scoped_release release;  // comparisons are on the bits: no floating-point environment needed
@@ -208,10 +196,12 @@ class Triangulation {
  private:
   template <int D>
   void compute_neighbors(Cells<D>& c) {
-    const std::lock_guard lock(mutex_);  // two Python threads may ask at once, GIL released
+    // Two Python threads may ask at once. The GIL goes first: waiting for the
+    // mutex while holding it would deadlock with the thread that computes.
+    py::gil_scoped_release release;
+    const std::lock_guard lock(mutex_);
     if (c.have_neighbors) return;
     if (c.simplices.size() > max_index) throw py::value_error("more than 2^31 - 1 simplices: neighbors need int64");
-    py::gil_scoped_release release;
     c.neighbors.resize(c.simplices.size());
     dewall::certify::neighbors<D, std::int32_t>(static_cast<std::size_t>(points_.shape(0)),
                                                 std::span<const dewall::Simplex<D>>(c.simplices),
@@ -235,7 +225,7 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
     throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
   dewall::Options options;
   options.engine = *e;
-  return with_dimension(static_cast<int>(points.shape(1)), [&](auto d) {
+  return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto d) {
     constexpr int D = d();
     const auto view = as_points<D>(points);
     dewall::Triangulation<D> t;
@@ -274,7 +264,7 @@ py::dict certify(py::handle points_in, py::handle simplices_in, bool all) {
   const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
   dewall::certify::Options options;
   options.all = all;
-  const dewall::certify::Report r = with_dimension(static_cast<int>(d), [&](auto dim) {
+  const dewall::certify::Report r = dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
     constexpr int D = dim();
     static_assert(sizeof(dewall::certify::Simplex_indices<D>) == (D + 1) * sizeof(std::uint32_t));
     const std::span<const dewall::certify::Simplex_indices<D>> rows(
@@ -341,5 +331,6 @@ PYBIND11_MODULE(_dewall, m) {
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
+  m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));
 }

@@ -63,3 +63,22 @@ def test_gil_released_during_a_large_triangulation():
     elapsed = time.perf_counter() - start
     # A held GIL would leave this loop a handful of ticks (one per switch interval at most).
     assert elapsed > 0.2 and ticks > elapsed * 100, (ticks, elapsed)
+
+
+def test_concurrent_queries_on_one_triangulation(rng):
+    points = rng.random((20_000, 3))
+    tri = dewall.Delaunay(points)
+    queries = rng.random((2_000, 3))
+    results = [None] * 4
+
+    def ask(i):  # the first asks build the neighbours, concurrently
+        results[i] = tri.find_simplex(queries)
+
+    workers = [threading.Thread(target=ask, args=(i,)) for i in range(4)]
+    for w in workers:
+        w.start()
+    for w in workers:
+        w.join()
+    for r in results[1:]:
+        np.testing.assert_array_equal(r, results[0])
+    assert (results[0] >= 0).all()
