@@ -68,7 +68,7 @@ def test_gil_released_during_a_large_triangulation():
 def test_concurrent_queries_on_one_triangulation(rng):
     points = rng.random((20_000, 3))
     tri = dewall.Delaunay(points)
-    queries = rng.random((2_000, 3))
+    queries = rng.random((2_000, 3)) * 0.5 + 0.25  # well inside the hull
     results = [None] * 4
 
     def ask(i):  # the first asks build the neighbours, concurrently
