@@ -8,12 +8,14 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/certify/report.hpp"
 #include "dewall/error.hpp"
+#include "dewall/kernel/dimension.hpp"
 #include "dewall/kernel/point_array.hpp"
 #include "dewall/options.hpp"
 
@@ -71,14 +73,9 @@ Run triangulate_any(const io::Point_table& table, const Options& options = {});
 /// run time. \throws Usage_error for any other dimension.
 template <class F>
 decltype(auto) with_dimension(int dimension, F&& f) {
-  switch (dimension) {
-    case 2: return f(std::integral_constant<int, 2>{});
-    case 3: return f(std::integral_constant<int, 3>{});
-    case 4: return f(std::integral_constant<int, 4>{});
-    case 5: return f(std::integral_constant<int, 5>{});
-    case 6: return f(std::integral_constant<int, 6>{});
-  }
-  throw Usage_error("dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+  if (dimension < kernel::min_dimension || dimension > kernel::max_dimension)
+    throw Usage_error(kernel::unsupported_dimension_message(dimension));
+  return kernel::with_dimension(dimension, std::forward<F>(f));
 }
 
 /// The points of a table as kernel points. \pre table.dimension == D.

@@ -26,9 +26,7 @@ int command_triangulate(int argc, char** argv) {
   if (operands.empty()) throw Usage_error("triangulate needs an INPUT file ('-' for standard input)");
   const std::string& input = operands[0];
   Options options;
-  if (engine == "auto") options.engine = Engine::automatic;
-  else if (engine == "dewall") options.engine = Engine::dewall;
-  else if (engine == "cgal") options.engine = Engine::cgal;
+  if (const auto e = parse_engine(engine)) options.engine = *e;
   else throw Usage_error("unknown engine " + io::quoted(engine) + " (auto, dewall or cgal)");
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);

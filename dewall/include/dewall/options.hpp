@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
+#include <string_view>
 
 namespace dewall {
 
@@ -23,6 +25,15 @@ enum class Engine {
 /// "automatic", "dewall" or "cgal".
 constexpr const char* engine_name(Engine e) {
   return e == Engine::automatic ? "automatic" : e == Engine::dewall ? "dewall" : "cgal";
+}
+
+/// The engine a user names: "auto", "dewall" or "cgal" (the CLI's --engine and
+/// the Python bindings' engine=), or nothing for any other name.
+constexpr std::optional<Engine> parse_engine(std::string_view name) {
+  if (name == "auto") return Engine::automatic;
+  if (name == "dewall") return Engine::dewall;
+  if (name == "cgal") return Engine::cgal;
+  return std::nullopt;
 }
 
 struct Options {

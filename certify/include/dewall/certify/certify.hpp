@@ -68,6 +68,7 @@
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
+#include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/point.hpp"
 
@@ -165,21 +166,10 @@ class Certifier {
         if (bad_point_[i]) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }
-    std::vector<std::uint32_t> order;
-    order.reserve(n);
+    first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(),
+                                       [&](std::size_t i) { return bool(bad_point_[i]); });
     for (std::size_t i = 0; i < n; ++i)
-      if (!bad_point_[i]) order.push_back(static_cast<std::uint32_t>(i));
-    const auto compare = k_.compare_lexicographically_d_object();
-    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return compare(points_[a], points_[b]) == kernel::SMALLER;
-    });
-    first_.assign(n, 0);
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      // stable: the first of a run of equal points is the earliest input index.
-      const bool same = i > 0 && compare(points_[order[i - 1]], points_[order[i]]) == kernel::EQUAL;
-      first_[order[i]] = same ? first_[order[i - 1]] : order[i];
-      if (!same) ++report_.distinct_points;
-    }
+      if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }
 
   /// Indices, repeated vertices, later duplicates, degeneracy; orient positively.

@@ -1,0 +1,20 @@
+"""Exact Delaunay triangulations in E^2 … E^6, with scipy.spatial.Delaunay's interface.
+
+    >>> import dewall
+    >>> tri = dewall.Delaunay(points)            # as scipy.spatial.Delaunay(points)
+    >>> tri.simplices, tri.neighbors, tri.find_simplex(xi)
+    >>> dewall.certify(points, tri.simplices)    # also on scipy's own output
+
+Every geometric decision is the sign of an exact determinant, and degenerate
+input (grids, cospherical points, duplicates) is resolved by CGAL's symbolic
+perturbation: the simplices are CGAL's, on every input. See the README's
+Python section.
+"""
+
+from ._certify import Certificate, Violation, certify
+from ._delaunay import Delaunay
+from ._dewall import InvalidInput
+from ._generate import KINDS, generate
+
+__all__ = ["Delaunay", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput"]
+__version__ = "0.1.0"

@@ -1,0 +1,336 @@
+// dewall._dewall: the compiled half of the Python package (python/dewall/ is
+// the other). Thin: it checks array types, views NumPy memory as the library's
+// points without copying, releases the GIL, and calls the library — the
+// triangulator (dewall.hpp), the certifier, neighbors and locate, the point
+// generators. No CGAL header here (the library holds the compiled CGAL engine).
+//
+// Arrays in: C-contiguous float64 of shape (n, D), exactly; the Python layer
+// (python/dewall/_arrays.py) converts anything else once, exactly, or refuses.
+// Arrays out: views of the library's own vectors (a capsule or the owning
+// Python object keeps them alive), read-only where later calls rely on them.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <tbb/task_arena.h>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "dewall/certify/certify.hpp"
+#include "dewall/certify/neighbors.hpp"
+#include "dewall/dewall.hpp"
+#include "dewall/error.hpp"
+#include "dewall/io/point_generators.hpp"
+#include "dewall/kernel/dimension.hpp"
+#include "dewall/kernel/first_occurrence.hpp"
+#include "dewall/locate.hpp"
+
+namespace py = pybind11;
+
+namespace {
+
+using dewall::kernel::Point_d;
+template <int D>
+using Kernel = dewall::kernel::Filtered_kernel_d<D>;
+
+// NumPy's int32 (scipy's index type) holds every index below 2^31.
+constexpr std::size_t max_index = std::numeric_limits<std::int32_t>::max();
+
+/// The element types the module takes: NumPy's kind character and item size.
+struct Element_type {
+  char kind;
+  py::ssize_t size;
+  const char* name;
+};
+constexpr Element_type float64{'f', 8, "float64"};
+constexpr Element_type uint32{'u', 4, "uint32"};
+
+/// `h` as a C-contiguous 2-D array of `type` with `columns` columns (any
+/// number when columns < 0). \throws TypeError otherwise: the Python layer
+/// converts, so this guards only direct callers of _dewall.
+py::array checked(py::handle h, Element_type type, long columns, const char* what) {
+  if (!py::isinstance<py::array>(h)) throw py::type_error(std::string(what) + " must be a NumPy array");
+  auto a = py::reinterpret_borrow<py::array>(h);
+  if (a.dtype().kind() != type.kind || a.dtype().itemsize() != type.size)
+    throw py::type_error(std::string(what) + " must have dtype " + type.name);
+  if (a.ndim() != 2 || (columns >= 0 && a.shape(1) != columns))
+    throw py::type_error(std::string(what) + " must be a 2-D array" +
+                         (columns >= 0 ? " with " + std::to_string(columns) + " columns" : std::string()));
+  if (!(a.flags() & py::array::c_style)) throw py::type_error(std::string(what) + " must be C-contiguous");
+  return a;
+}
+
+/// The rows of a checked float64 array as points, in place. Point_d<D> is D
+/// doubles and nothing else (static_asserts), the layout of a C-contiguous row.
+template <int D>
+std::span<const Point_d<D>> as_points(const py::array& a) {
+  static_assert(sizeof(Point_d<D>) == D * sizeof(double) && alignof(Point_d<D>) == alignof(double) &&
+                std::is_standard_layout_v<Point_d<D>> && std::is_trivially_copyable_v<Point_d<D>>);
+  return {reinterpret_cast<const Point_d<D>*>(a.data()), static_cast<std::size_t>(a.shape(0))};
+}
+
+/// A NumPy array over a vector's memory, the vector moved into the capsule
+/// that owns it (no copy). `Element` is the NumPy element type: it may
+/// reinterpret T's integers (uint32 → int32 when every value is below 2^31).
+template <class Element, class T>
+py::array adopt(std::vector<T>&& v, std::vector<py::ssize_t> shape) {
+  static_assert(sizeof(T) % sizeof(Element) == 0);
+  auto* owner = new std::vector<T>(std::move(v));
+  py::capsule free_when_done(owner, [](void* p) { delete static_cast<std::vector<T>*>(p); });
+  return py::array_t<Element>(shape, reinterpret_cast<const Element*>(owner->data()), free_when_done);
+}
+
+/// A read-only int32 view of `data` whose base is `owner`.
+template <class T>
+py::array view_int32(const T* data, py::ssize_t rows, py::ssize_t columns, py::handle owner) {
+  static_assert(sizeof(T) == static_cast<std::size_t>(sizeof(std::int32_t)) * T{}.size());
+  py::array a = py::array_t<std::int32_t>({rows, columns}, reinterpret_cast<const std::int32_t*>(data), owner);
+  a.attr("flags").attr("writeable") = false;
+  return a;
+}
+
+/// Runs f with at most `threads` threads (TBB arena), or TBB's default.
+template <class F>
+auto with_threads(std::optional<int> threads, F&& f) {
+  if (!threads) return f();
+  if (*threads < 1) throw py::value_error("threads must be at least 1, not " + std::to_string(*threads));
+  tbb::task_arena arena(*threads);
+  return arena.execute(std::forward<F>(f));
+}
+
+py::dict statistics_dict(const dewall::Statistics& s, double seconds) {
+  py::dict d;
+  d["engine"] = dewall::engine_name(s.engine);
+  d["input_points"] = s.input_points;
+  d["distinct_points"] = s.distinct_points;
+  d["simplices"] = s.simplices;
+  d["first_wall_simplices"] = s.first_wall_simplices;
+  d["recursion_depth"] = s.recursion_depth;
+  d["simplex_searches"] = s.simplex_searches;
+  d["candidates_tested"] = s.candidates_tested;
+  d["tree_leaves"] = s.tree_leaves;
+  d["searches_before_handover"] = s.searches_before_handover;
+  d["build_seconds"] = seconds;
+  return d;
+}
+
+/// A triangulation of one dimension: simplices, and the neighbors once asked.
+template <int D>
+struct Cells {
+  static constexpr int dimension = D;
+  std::vector<dewall::Simplex<D>> simplices;
+  std::vector<std::array<std::int32_t, D + 1>> neighbors;
+  bool have_neighbors = false;
+};
+
+/// What dewall.Delaunay wraps: the points (the caller's array, not copied:
+/// kept alive here), the simplices and, on demand, the neighbors.
+class Triangulation {
+ public:
+  using Any_cells = std::variant<Cells<2>, Cells<3>, Cells<4>, Cells<5>, Cells<6>>;
+  Triangulation(py::array points, Any_cells cells, dewall::Statistics stats, double seconds)
+      : points_(std::move(points)), cells_(std::move(cells)), stats_(stats), seconds_(seconds) {}
+
+  int dimension() const { return static_cast<int>(points_.shape(1)); }
+  py::dict statistics() const { return statistics_dict(stats_, seconds_); }
+
+  py::array simplices(py::handle self) const {
+    return std::visit([&](const auto& c) {
+      return view_int32(c.simplices.data(), static_cast<py::ssize_t>(c.simplices.size()),
+                        static_cast<py::ssize_t>(dimension() + 1), self);
+    }, cells_);
+  }
+
+  py::array neighbors(py::handle self) {
+    return std::visit([&](auto& c) {
+      compute_neighbors(c);
+      return view_int32(c.neighbors.data(), static_cast<py::ssize_t>(c.neighbors.size()),
+                        static_cast<py::ssize_t>(dimension() + 1), self);
+    }, cells_);
+  }
+
+  /// The simplex containing each query row (exact), −1 outside.
+  py::array locate(py::handle queries) {
+    return std::visit([&](auto& c) {
+      constexpr int D = std::decay_t<decltype(c)>::dimension;
+      const py::array q = checked(queries, float64, D, "xi");
+      compute_neighbors(c);
+      py::array_t<std::int32_t> out(q.shape(0));
+      std::span<std::int32_t> result(out.mutable_data(), static_cast<std::size_t>(q.shape(0)));
+      py::gil_scoped_release release;
+      dewall::locate_all<Kernel<D>>({}, as_points<D>(points_),
+                                    std::span<const dewall::Simplex<D>>(c.simplices),
+                                    std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), as_points<D>(q),
+                                    result);
+      return py::array(out);
+    }, cells_);
+  }
+
+  /// For each input point, the input index of the vertex that stands for it
+  /// (itself unless it duplicates an earlier point).
+  py::array first_occurrences() const {
+    return dewall::kernel::with_dimension(dimension(), [&](auto d) {
+      std::vector<std::uint32_t> first;
+      {
+        py::gil_scoped_release release;  // comparisons are on the bits: no floating-point environment needed
+        first = dewall::kernel::first_occurrences(as_points<d()>(points_),
+                                                  Kernel<d()>{}.compare_lexicographically_d_object());
+      }
+      const auto n = static_cast<py::ssize_t>(first.size());
+      return adopt<std::int32_t>(std::move(first), {n});
+    });
+  }
+
+ private:
+  template <int D>
+  void compute_neighbors(Cells<D>& c) {
+    // Two Python threads may ask at once. The GIL goes first: waiting for the
+    // mutex while holding it would deadlock with the thread that computes.
+    py::gil_scoped_release release;
+    const std::lock_guard lock(mutex_);
+    if (c.have_neighbors) return;
+    if (c.simplices.size() > max_index) throw py::value_error("more than 2^31 - 1 simplices: neighbors need int64");
+    c.neighbors.resize(c.simplices.size());
+    dewall::certify::neighbors<D, std::int32_t>(static_cast<std::size_t>(points_.shape(0)),
+                                                std::span<const dewall::Simplex<D>>(c.simplices),
+                                                std::span<std::array<std::int32_t, D + 1>>(c.neighbors));
+    c.have_neighbors = true;
+  }
+
+  py::array points_;
+  Any_cells cells_;
+  dewall::Statistics stats_;
+  double seconds_;
+  std::mutex mutex_;
+};
+
+std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::string& engine,
+                                           std::optional<int> threads) {
+  py::array points = checked(points_in, float64, -1, "points");
+  const auto e = dewall::parse_engine(engine);
+  if (!e) throw py::value_error("unknown engine '" + engine + "' (auto, dewall or cgal)");
+  if (static_cast<std::size_t>(points.shape(0)) > max_index)
+    throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
+  dewall::Options options;
+  options.engine = *e;
+  return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto d) {
+    constexpr int D = d();
+    const auto view = as_points<D>(points);
+    dewall::Triangulation<D> t;
+    double seconds = 0;
+    {
+      py::gil_scoped_release release;  // other Python threads run meanwhile
+      const auto start = std::chrono::steady_clock::now();
+      t = with_threads(threads, [&] { return dewall::triangulate<Kernel<D>>(view, options); });
+      seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    Cells<D> cells;
+    cells.simplices = std::move(t.simplices);
+    return std::make_unique<Triangulation>(points, std::move(cells), t.statistics, seconds);
+  });
+}
+
+py::dict violation_dict(const dewall::certify::Violation& v) {
+  const auto index = [](std::size_t i) -> py::object {
+    return i == dewall::certify::npos ? py::object(py::none()) : py::object(py::int_(i));
+  };
+  py::dict d;
+  d["rule"] = dewall::certify::rule_name(v.rule);
+  d["message"] = dewall::certify::describe(v);
+  d["fatal"] = v.fatal();
+  d["simplex"] = index(v.simplex);
+  d["other_simplex"] = index(v.other_simplex);
+  d["face"] = py::tuple(py::cast(v.face));
+  d["point"] = index(v.point);
+  return d;
+}
+
+/// certify(): the report as a dict (python/dewall/_certify.py makes it a class).
+py::dict certify(py::handle points_in, py::handle simplices_in, bool all) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
+  dewall::certify::Options options;
+  options.all = all;
+  const dewall::certify::Report r = dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    static_assert(sizeof(dewall::certify::Simplex_indices<D>) == (D + 1) * sizeof(std::uint32_t));
+    const std::span<const dewall::certify::Simplex_indices<D>> rows(
+        reinterpret_cast<const dewall::certify::Simplex_indices<D>*>(simplices.data()),
+        static_cast<std::size_t>(simplices.shape(0)));
+    py::gil_scoped_release release;
+    return dewall::certify::certify<Kernel<D>>(as_points<D>(points), rows, options);
+  });
+  py::dict out;
+  out["delaunay"] = r.delaunay;
+  out["canonical"] = r.canonical;
+  out["dimension"] = r.dimension;
+  out["points"] = r.points;
+  out["distinct_points"] = r.distinct_points;
+  out["simplices"] = r.simplices;
+  out["interior_facets"] = r.interior_facets;
+  out["boundary_facets"] = r.boundary_facets;
+  out["cospherical_facets"] = r.cospherical_facets;
+  py::list violations;
+  for (const auto& v : r.violations) violations.append(violation_dict(v));
+  out["violations"] = violations;
+  return out;
+}
+
+py::array generate(const std::string& kind_name, std::size_t n, int dimension, std::uint64_t seed) {
+  const auto kind = dewall::io::parse_point_kind(kind_name);
+  if (!kind)
+    throw py::value_error("unknown kind '" + kind_name + "' (one of " + dewall::io::point_kind_names() + ")");
+  dewall::io::Point_table table;
+  {
+    py::gil_scoped_release release;
+    table = dewall::io::generate_points(*kind, n, dimension, seed);  // std::invalid_argument → ValueError
+  }
+  const auto rows = static_cast<py::ssize_t>(table.size());
+  return adopt<double>(std::move(table.coordinates), {rows, static_cast<py::ssize_t>(dimension)});
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_dewall, m) {
+  m.doc() = "The compiled part of dewall (use the dewall package, not this module).";
+
+  // Points that cannot be triangulated: a ValueError subclass whose `point` is
+  // the offending input index (None when the whole set is at fault).
+  static py::exception<dewall::Invalid_input> invalid_input(m, "InvalidInput", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const dewall::Invalid_input& e) {
+      py::object error = py::handle(invalid_input.ptr())(e.what());
+      error.attr("point") = e.point_index() == dewall::Invalid_input::npos ? py::object(py::none())
+                                                                          : py::object(py::int_(e.point_index()));
+      PyErr_SetObject(invalid_input.ptr(), error.ptr());
+    }
+  });
+
+  py::class_<Triangulation>(m, "Triangulation")
+      .def_property_readonly("dimension", &Triangulation::dimension)
+      .def_property_readonly("statistics", &Triangulation::statistics)
+      .def("simplices", [](py::object self) { return self.cast<Triangulation&>().simplices(self); })
+      .def("neighbors", [](py::object self) { return self.cast<Triangulation&>().neighbors(self); })
+      .def("locate", &Triangulation::locate, py::arg("xi"))
+      .def("first_occurrences", &Triangulation::first_occurrences);
+
+  m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
+  m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
+  m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
+  m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));
+}
