@@ -10,12 +10,13 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "dewall/error.hpp"
+#include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/sign.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/point.hpp"
@@ -38,16 +39,10 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
       if (!kernel::is_finite(x[j]))
         throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
   }
-  std::vector<std::size_t> order(points.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto compare = k.compare_lexicographically_d_object();
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return compare(points[a], points[b]) == kernel::SMALLER;
-  });
+  const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object());
   std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < order.size(); ++i)
-    if (i == 0 || compare(points[order[i - 1]], points[order[i]]) != kernel::EQUAL) kept.push_back(order[i]);
-  std::sort(kept.begin(), kept.end());
+  for (std::size_t i = 0; i < first.size(); ++i)
+    if (first[i] == i) kept.push_back(i);
   if (kept.size() < static_cast<std::size_t>(D + 1))
     throw Invalid_input("need at least " + std::to_string(D + 1) + " distinct points in dimension " +
                         std::to_string(D) + ", got " + std::to_string(kept.size()));
