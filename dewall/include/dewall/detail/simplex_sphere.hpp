@@ -86,6 +86,8 @@ class Simplex_sphere {
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j) {
         y[i][j] = (*s[i + 1])[j] - origin_[j];
+        // std::max, not std::fmax (a library call under -fno-fast-math): a
+        // difference of finite coordinates is never NaN, nor are the sums below.
         largest = std::max(largest, std::fabs(y[i][j]));
       }
     if (!(largest >= 0x1p-50 && largest <= 0x1p50) && std::isfinite(largest) && largest > 0) {
