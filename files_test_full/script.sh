@@ -1,1 +1,0 @@
-$DEWALL draw p.txt s.txt > full

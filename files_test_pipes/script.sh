@@ -1,1 +1,0 @@
-cat q.txt | $DEWALL draw /dev/stdin s.txt

@@ -1,1 +1,0 @@
-ln -s victim res.txt.tmp.$$ && exec $DEWALL triangulate p.txt -o res.txt
