@@ -21,10 +21,10 @@ Run triangulate_table(const io::Point_table& table, const Options& options) {
   Run run;
   run.simplices.vertices_per_simplex = D + 1;
   const auto start = std::chrono::steady_clock::now();
-  run.stats = triangulate_to<kernel::Filtered_kernel_d<D>>(
-      std::span<const kernel::Point_d<D>>(points),
-      [&](const Simplex<D>& s) { run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end()); },
-      options);
+  const auto t = triangulate<kernel::Filtered_kernel_d<D>>(std::span<const kernel::Point_d<D>>(points), options);
+  run.stats = t.statistics;
+  run.simplices.indices.reserve(t.simplices.size() * (D + 1));
+  for (const Simplex<D>& s : t.simplices) run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end());
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
@@ -54,11 +54,11 @@ void print_stats(std::FILE* out, const Run& run) {
   std::fprintf(out,
                "points=%zu distinct=%zu simplices=%zu first_wall_simplices=%zu recursion_depth=%zu\n"
                "tree_leaves=%zu mean_nodes_per_simplex=%.2f candidates_per_search=%.2f\n"
-               "engine=%s searches_before_handover=%zu build_s=%.6f\n",
+               "engine=%s region_simplices=%zu searches_before_handover=%zu build_s=%.6f\n",
                s.input_points, s.distinct_points, s.simplices, s.first_wall_simplices, s.recursion_depth,
                s.tree_leaves, s.mean_nodes_per_simplex(),
                s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0,
-               engine_name(s.engine), s.searches_before_handover, run.seconds);
+               engine_name(s.engine), s.region_simplices, s.searches_before_handover, run.seconds);
 }
 
 namespace {

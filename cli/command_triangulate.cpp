@@ -1,4 +1,4 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|cgal] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--stats] [--quiet]
 #include <cstdio>
 
 #include "cli.hpp"
@@ -27,7 +27,7 @@ int command_triangulate(int argc, char** argv) {
   const std::string& input = operands[0];
   Options options;
   if (const auto e = parse_engine(engine)) options.engine = *e;
-  else throw Usage_error("unknown engine " + io::quoted(engine) + " (auto, dewall or cgal)");
+  else throw Usage_error("unknown engine " + io::quoted(engine) + " (" + engine_choices + ")");
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
@@ -53,7 +53,7 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|cgal] [--stats] [--quiet]\n"
+    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -62,9 +62,12 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, legacy\n"
     "      VTK for ParaView when it ends in .vtk (2D and 3D).\n"
     "      --engine: the construction; the simplices are the same with each.\n"
-    "      auto (default) runs DeWall and hands over to CGAL's incremental\n"
-    "      construction when DeWall's searches prove too costly (points on or near\n"
-    "      one sphere, thin surfaces); dewall and cgal force one of them.\n"
+    "      hybrid builds DeWall's walls down to regions of n/8 points and\n"
+    "      triangulates each region with CGAL's incremental construction (no\n"
+    "      merge step; the regions run in parallel). auto (default) is hybrid,\n"
+    "      handing over to CGAL alone when the walls' searches prove too costly\n"
+    "      (points on or near one sphere, thin surfaces). dewall (walls all the\n"
+    "      way down, the paper's algorithm) and cgal force one construction.\n"
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"

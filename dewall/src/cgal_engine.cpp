@@ -8,6 +8,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_3.h>
+#include <CGAL/Triangulation_cell_base_with_info_3.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/property_map.h>
 #include <CGAL/spatial_sort.h>
 #include <CGAL/Spatial_sort_traits_adapter_d.h>
@@ -22,40 +24,61 @@ namespace {
 
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-/// CGAL's cells over the distinct points, each vertex carrying its input index:
-/// `cell(i)` of each finite cell gives the index of its vertex i.
-template <int D, class Emit>
-void cgal_cells(std::span<const kernel::Point_d<D>> points, const std::vector<std::size_t>& distinct, Emit&& emit) {
+/// CGAL's triangulation of the points `ids` (point(i) gives the coordinates of
+/// point i) as Region_cells: vertices are ids, neighbors index `cells`.
+/// False when the points do not span E^D. Cells are listed in CGAL's order.
+template <int D, class Point_of>
+bool cgal_cells(std::span<const Index> ids, Point_of&& point, std::vector<Region_cell<D>>& cells) {
+  cells.clear();
+  // Numbers the finite cells, then lists them with their neighbours; `info`
+  // is the per-cell number CGAL stores for us (-1 for the infinite ones).
+  auto list = [&](auto& dt, auto begin, auto end, auto&& info, auto&& vertex_id) {
+    std::int32_t k = 0;
+    for (auto c = begin; c != end; ++c) info(c) = dt.is_infinite(c) ? -1 : k++;
+    cells.resize(static_cast<std::size_t>(k));
+    for (auto c = begin; c != end; ++c) {
+      if (info(c) < 0) continue;
+      Region_cell<D>& cell = cells[static_cast<std::size_t>(info(c))];
+      for (int i = 0; i <= D; ++i) {
+        cell.vertices[static_cast<std::size_t>(i)] = vertex_id(c->vertex(i));
+        cell.neighbor[static_cast<std::size_t>(i)] = info(c->neighbor(i));
+      }
+    }
+  };
   if constexpr (D == 2) {
-    using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Epick>;
-    using Tds = CGAL::Triangulation_data_structure_2<Vb>;
-    std::vector<std::pair<Epick::Point_2, std::uint32_t>> items;
-    items.reserve(distinct.size());
-    for (std::size_t i : distinct) items.emplace_back(Epick::Point_2(points[i][0], points[i][1]), std::uint32_t(i));
+    using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, Epick>;
+    using Fb = CGAL::Triangulation_face_base_with_info_2<std::int32_t, Epick>;
+    using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+    std::vector<std::pair<Epick::Point_2, Index>> items;
+    items.reserve(ids.size());
+    for (Index i : ids) items.emplace_back(Epick::Point_2(point(i)[0], point(i)[1]), i);
     CGAL::Delaunay_triangulation_2<Epick, Tds> dt(items.begin(), items.end());
-    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
-      emit([&](int i) { return f->vertex(i)->info(); });
+    if (dt.dimension() < 2) return false;
+    list(dt, dt.all_faces_begin(), dt.all_faces_end(), [](auto c) -> std::int32_t& { return c->info(); },
+         [](auto v) { return v->info(); });
   } else if constexpr (D == 3) {
-    using Vb = CGAL::Triangulation_vertex_base_with_info_3<std::uint32_t, Epick>;
-    using Tds = CGAL::Triangulation_data_structure_3<Vb, CGAL::Delaunay_triangulation_cell_base_3<Epick>>;
-    std::vector<std::pair<Epick::Point_3, std::uint32_t>> items;
-    items.reserve(distinct.size());
-    for (std::size_t i : distinct)
-      items.emplace_back(Epick::Point_3(points[i][0], points[i][1], points[i][2]), std::uint32_t(i));
+    using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, Epick>;
+    using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int32_t, Epick,
+                                                         CGAL::Delaunay_triangulation_cell_base_3<Epick>>;
+    using Tds = CGAL::Triangulation_data_structure_3<Vb, Cb>;
+    std::vector<std::pair<Epick::Point_3, Index>> items;
+    items.reserve(ids.size());
+    for (Index i : ids) items.emplace_back(Epick::Point_3(point(i)[0], point(i)[1], point(i)[2]), i);
     CGAL::Delaunay_triangulation_3<Epick, Tds> dt(items.begin(), items.end());
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
-      emit([&](int i) { return c->vertex(i)->info(); });
+    if (dt.dimension() < 3) return false;
+    list(dt, dt.all_cells_begin(), dt.all_cells_end(), [](auto c) -> std::int32_t& { return c->info(); },
+         [](auto v) { return v->info(); });
   } else {
     using K = CGAL::Epick_d<CGAL::Dimension_tag<D>>;
-    using Vertex = CGAL::Triangulation_vertex<K, std::uint32_t>;
+    using Vertex = CGAL::Triangulation_vertex<K, Index>;
     using Tds = CGAL::Triangulation_data_structure<CGAL::Dimension_tag<D>, Vertex,
-                                                   CGAL::Triangulation_full_cell<K>>;
+                                                   CGAL::Triangulation_full_cell<K, std::int32_t>>;
     CGAL::Delaunay_triangulation<K, Tds> dt(D);
     // Spatially sorted insertion, as the range insert does, but keeping the index.
     std::vector<typename K::Point_d> p;
-    p.reserve(distinct.size());
-    for (std::size_t i : distinct) p.emplace_back(points[i].x.begin(), points[i].x.end());
-    std::vector<std::size_t> order(distinct.size());
+    p.reserve(ids.size());
+    for (Index i : ids) p.emplace_back(point(i).begin(), point(i).end());
+    std::vector<std::size_t> order(ids.size());
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     using Sort_traits =
         CGAL::Spatial_sort_traits_adapter_d<K, typename CGAL::Pointer_property_map<typename K::Point_d>::type>;
@@ -63,12 +86,14 @@ void cgal_cells(std::span<const kernel::Point_d<D>> points, const std::vector<st
     typename CGAL::Delaunay_triangulation<K, Tds>::Full_cell_handle hint;
     for (std::size_t k : order) {
       const auto v = dt.insert(p[k], hint);
-      v->data() = static_cast<std::uint32_t>(distinct[k]);
+      v->data() = ids[k];
       hint = v->full_cell();
     }
-    for (auto c = dt.finite_full_cells_begin(); c != dt.finite_full_cells_end(); ++c)
-      emit([&](int i) { return c->vertex(i)->data(); });
+    if (dt.current_dimension() < D) return false;
+    list(dt, dt.full_cells_begin(), dt.full_cells_end(), [](auto c) -> std::int32_t& { return c->data(); },
+         [](auto v) { return v->data(); });
   }
+  return true;
 }
 
 }  // namespace
@@ -82,19 +107,22 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std
   for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
   require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
 
+  const std::vector<Index> ids(distinct.begin(), distinct.end());
+  std::vector<Region_cell<D>> cells;
+  cgal_cells<D>(ids, [&](Index i) -> const std::array<double, D>& { return points[i].x; }, cells);
   const std::size_t before = simplices.size();
   const auto orientation = K{}.orientation_d_object();
-  cgal_cells<D>(points, distinct, [&](auto&& vertex) {
+  for (const Region_cell<D>& cell : cells) {
     Simplex<D> s;
     std::array<const kernel::Point_d<D>*, D + 1> p;
     for (int i = 0; i <= D; ++i) {
-      s[static_cast<std::size_t>(i)] = vertex(i);
+      s[static_cast<std::size_t>(i)] = cell.vertices[static_cast<std::size_t>(i)];
       p[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
     }
     // Positively oriented, as DeWall writes them (TetGen .ele expects it).
     if (orientation(p) == kernel::NEGATIVE) std::swap(s[0], s[1]);
     simplices.push_back(s);
-  });
+  }
   Statistics st;
   st.input_points = points.size();
   st.distinct_points = distinct.size();
@@ -103,8 +131,35 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std
   return st;
 }
 
-#define DEWALL_INSTANTIATE_CGAL_ENGINE(D) \
-  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, std::vector<Simplex<D>>&);
+template <int D>
+bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords,
+                       std::vector<Region_cell<D>>& cells) {
+  const kernel::Fp_environment_guard guard;
+  const bool spans = cgal_cells<D>(region, [&](Index i) -> const Coords<D>& { return coords[i]; }, cells);
+  if constexpr (D > 3) {
+    // CGAL's dD cells all have one orientation, not necessarily positive.
+    if (spans && !cells.empty()) {
+      using K = kernel::Filtered_kernel_d<D>;
+      std::array<kernel::Point_d<D>, D + 1> p;
+      std::array<const kernel::Point_d<D>*, D + 1> refs;
+      for (int i = 0; i <= D; ++i) {
+        p[static_cast<std::size_t>(i)].x = coords[cells[0].vertices[static_cast<std::size_t>(i)]];
+        refs[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
+      }
+      if (K{}.orientation_d_object()(refs) == kernel::NEGATIVE)
+        for (Region_cell<D>& c : cells) {
+          std::swap(c.vertices[0], c.vertices[1]);
+          std::swap(c.neighbor[0], c.neighbor[1]);
+        }
+    }
+  }
+  return spans;
+}
+
+#define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \
+  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, std::vector<Simplex<D>>&); \
+  template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,                   \
+                                     std::vector<Region_cell<D>>&);
 DEWALL_INSTANTIATE_CGAL_ENGINE(2)
 DEWALL_INSTANTIATE_CGAL_ENGINE(3)
 DEWALL_INSTANTIATE_CGAL_ENGINE(4)

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "dewall/detail/region.hpp"
 #include "dewall/dewall.hpp"
 
 namespace dewall::detail {
@@ -19,5 +20,11 @@ namespace dewall::detail {
 /// `simplices` as positively oriented input indices, in CGAL's cell order.
 template <int D>
 Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices);
+
+/// The region triangulator of Engine::hybrid (region.hpp): CGAL's
+/// triangulation of the points `region`, positively oriented cells.
+template <int D>
+bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords,
+                       std::vector<Region_cell<D>>& cells);
 
 }  // namespace dewall::detail

@@ -12,7 +12,7 @@
 namespace dewall::detail {
 
 /// The engine Options::engine names. The incremental engine's simplices get
-/// wall level 0 (it builds no walls).
+/// wall level 0 (it builds no walls); a hybrid region's, its recursion level.
 template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
                                 std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels) {
@@ -24,17 +24,21 @@ Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, cons
     if (wall_levels) wall_levels->resize(levels_before + st.simplices, 0);
     return st;
   };
+  const Region_triangulator<D> regions = cgal_region_cells<D>;
   switch (options.engine) {
     case Engine::cgal:
       return incremental();
     case Engine::dewall:
       return triangulate_generic<K>({}, points, options, simplices, wall_levels);
+    case Engine::hybrid:
+      return triangulate_generic<K>({}, points, options, simplices, wall_levels, nullptr, &regions);
     case Engine::automatic:
       break;
   }
   Search_budget budget(options.handover_candidates_per_search, points.size());
   try {
-    return triangulate_generic<K>({}, points, options, simplices, wall_levels, &budget);
+    Statistics st = triangulate_generic<K>({}, points, options, simplices, wall_levels, &budget, &regions);
+    return st;
   } catch (const Search_budget_spent&) {
     if (wall_levels) wall_levels->resize(levels_before);
     Statistics st = incremental();

@@ -220,7 +220,7 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
                                            std::optional<int> threads) {
   py::array points = checked(points_in, float64, -1, "points");
   const auto e = dewall::parse_engine(engine);
-  if (!e) throw py::value_error("unknown engine '" + engine + "' (auto, dewall or cgal)");
+  if (!e) throw py::value_error("unknown engine '" + engine + "' (" + dewall::engine_choices + ")");
   if (static_cast<std::size_t>(points.shape(0)) > max_index)
     throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
   dewall::Options options;

@@ -30,7 +30,8 @@ void check_same_output(const std::vector<Point_d<D>>& input) {
     else points.emplace_back(p.x.begin(), p.x.end());
   }
   const auto theirs = dewall::triangulate<Adapter<D>>(std::span<const typename Adapter<D>::Point_d>(points));
-  const auto ours = dewall::triangulate<D>(input);
+  // DeWall over both kernels (with another kernel the default engine is DeWall).
+  const auto ours = dewall::triangulate<D>(input, dewall::Options{.engine = dewall::Engine::dewall});
   CHECK(theirs.simplices == ours.simplices);
   CHECK(theirs.statistics.distinct_points == ours.statistics.distinct_points);
 }

@@ -1,9 +1,11 @@
 // The engines (dewall/options.hpp): DeWall, the incremental construction
-// compiled into the library (CGAL's), and the automatic choice between them
-// give the same simplices; the automatic engine hands over on points on a
-// sphere and not on volume data; Statistics says which engine built the output.
+// compiled into the library (CGAL's), the hybrid of the two (walls, then
+// regions) and the automatic choice give the same simplices; the automatic
+// engine hands over on points on a sphere and not on volume data; Statistics
+// says which engine built the output.
 #include <catch2/catch.hpp>
 
+#include <optional>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -36,13 +38,28 @@ bool positively_oriented(const std::vector<dewall::kernel::Point_d<D>>& points,
 }
 
 /// Runs every engine on `points`: each must give CGAL's simplices, positively
-/// oriented; returns the engine the automatic choice used.
+/// oriented; returns the engine the automatic choice used. The forced hybrid
+/// runs with regions of `region_points` (small: many walls and region
+/// boundaries), and not at all without them.
 template <int D>
-Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points) {
+Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
+                     std::optional<std::size_t> region_points = 40) {
   const auto expected = dewall::test::cgal_delaunay<D>(points);
   const auto forced = dewall::triangulate<D>(points, Options{.engine = Engine::dewall});
   const auto incremental = dewall::triangulate<D>(points, Options{.engine = Engine::cgal});
   const auto automatic = dewall::triangulate<D>(points);
+  if (region_points) {
+    // The same output, in the same order, on one thread.
+    const auto hybrid =
+        dewall::triangulate<D>(points, Options{.engine = Engine::hybrid, .region_points = *region_points});
+    const auto hybrid_serial = dewall::triangulate<D>(
+        points, Options{.parallel_depth = 0, .engine = Engine::hybrid, .region_points = *region_points});
+    CHECK(dewall::test::as_set<D>(hybrid.simplices) == expected);
+    CHECK(hybrid.simplices.size() == expected.size());
+    CHECK(hybrid.simplices == hybrid_serial.simplices);
+    CHECK(positively_oriented<D>(points, hybrid.simplices));
+    CHECK(hybrid.statistics.engine == Engine::hybrid);
+  }
   CHECK(dewall::test::as_set<D>(forced.simplices) == expected);
   CHECK(dewall::test::as_set<D>(incremental.simplices) == expected);
   CHECK(dewall::test::as_set<D>(automatic.simplices) == expected);
@@ -58,16 +75,37 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points) {
 }  // namespace
 
 TEST_CASE("engines: points on a sphere hand over to the incremental construction", "[engine]") {
-  // Every search examines about half the points: DeWall is quadratic here.
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 1200, 5)) == Engine::cgal);
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 1200, 0)) == Engine::cgal);
-  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6)) == Engine::cgal);
+  // Every search examines about half the points: DeWall is quadratic here,
+  // and so are the hybrid's walls and region filter (checked below, smaller).
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 1200, 5), {}) == Engine::cgal);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 1200, 0), {}) == Engine::cgal);
+  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6), {}) == Engine::cgal);
+  // Exactly cospherical regions: every cell's sphere is the whole sphere.
+  check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 150, 0));
 }
 
-TEST_CASE("engines: volume data stays with DeWall", "[engine]") {
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::uniform, 3000, 7)) == Engine::dewall);
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::bubbles, 3000, 8)) == Engine::dewall);
-  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::uniform, 3000, 9)) == Engine::dewall);
+TEST_CASE("engines: volume data stays with the hybrid", "[engine]") {
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::uniform, 3000, 7)) == Engine::hybrid);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::bubbles, 3000, 8)) == Engine::hybrid);
+  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::uniform, 3000, 9)) == Engine::hybrid);
+}
+
+TEST_CASE("engines: the hybrid's regions on degenerate inputs", "[engine]") {
+  // Lattices: cospherical sets everywhere, ties on every split, region
+  // boundaries through lattice planes; planes: the paper's Figure 7.
+  check_engines<3>(generated<3>(dewall::io::Point_kind::grid, 1000, 0));
+  check_engines<3>(generated<3>(dewall::io::Point_kind::planes, 1500, 13));
+  check_engines<2>(generated<2>(dewall::io::Point_kind::grid, 900, 0));
+  check_engines<2>(generated<2>(dewall::io::Point_kind::bubbles, 2000, 14));
+  // Regions of every size, including ones too small or too flat for a
+  // triangulation of their own (left to DeWall).
+  const auto points = generated<3>(dewall::io::Point_kind::grid, 343, 0);
+  const auto expected = dewall::test::cgal_delaunay<3>(points);
+  for (std::size_t region : {1, 4, 5, 9, 30, 100, 200}) {
+    const auto t = dewall::triangulate<3>(points, Options{.engine = Engine::hybrid, .region_points = region});
+    CHECK(dewall::test::as_set<3>(t.simplices) == expected);
+    CHECK(t.simplices.size() == expected.size());
+  }
 }
 
 TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[engine]") {
@@ -105,9 +143,10 @@ TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") 
 TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {
   struct User_kernel : dewall::kernel::Filtered_kernel_d<2> {};
   const std::vector<dewall::kernel::Point_d<2>> points{{{0, 0}}, {{1, 0}}, {{0, 1}}};
-  CHECK_THROWS_AS(dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points),
-                                                   Options{.engine = Engine::cgal}),
-                  std::invalid_argument);
+  for (Engine e : {Engine::cgal, Engine::hybrid})
+    CHECK_THROWS_AS(
+        dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points), Options{.engine = e}),
+        std::invalid_argument);
   // automatic means DeWall with another kernel
   CHECK(dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points)).statistics.engine ==
         Engine::dewall);

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -76,8 +77,9 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
                   "your flags are.");
     return {};
 #else
-    if (options.engine == Engine::cgal)
-      throw std::invalid_argument("dewall: Engine::cgal needs the project's kernel (Filtered_kernel_d)");
+    if (options.engine == Engine::cgal || options.engine == Engine::hybrid)
+      throw std::invalid_argument(std::string("dewall: Engine::") + engine_name(options.engine) +
+                                  " needs the project's kernel (Filtered_kernel_d)");
     return triangulate_generic<K>(k, points, options, simplices, wall_levels);
 #endif
   }

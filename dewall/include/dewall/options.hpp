@@ -11,28 +11,45 @@ namespace dewall {
 /// (the Delaunay triangulation under CGAL's symbolic perturbation); only the
 /// time and the statistics differ.
 enum class Engine {
-  /// DeWall, handing over to the incremental construction when its searches
-  /// prove the input is one no gift-wrapping search is fast on (points on or
-  /// near one sphere, thin surfaces): see Options::handover_candidates_per_search.
+  /// Engine::hybrid, handing over to the incremental construction when the
+  /// walls' searches prove the input is one no gift-wrapping search is fast on
+  /// (points on or near one sphere, thin surfaces): see
+  /// Options::handover_candidates_per_search.
   automatic,
-  /// DeWall only.
+  /// DeWall only: walls all the way down (the paper's algorithm).
   dewall,
   /// CGAL's incremental construction only (Delaunay_triangulation_2/_3, the dD
   /// Delaunay_triangulation), compiled into the library.
   cgal,
+  /// DeWall's walls down to regions of Options::region_points points, each
+  /// region triangulated by the incremental construction and the simplices
+  /// whose spheres hold no point of the other regions kept (no merge step:
+  /// dewall/detail/region.hpp says why this is exact). The regions are
+  /// independent, so they run in parallel like DeWall's subproblems.
+  hybrid,
 };
 
-/// "automatic", "dewall" or "cgal".
+/// "automatic", "dewall", "cgal" or "hybrid".
 constexpr const char* engine_name(Engine e) {
-  return e == Engine::automatic ? "automatic" : e == Engine::dewall ? "dewall" : "cgal";
+  switch (e) {
+    case Engine::automatic: return "automatic";
+    case Engine::dewall: return "dewall";
+    case Engine::cgal: return "cgal";
+    case Engine::hybrid: return "hybrid";
+  }
+  return "?";
 }
 
-/// The engine a user names: "auto", "dewall" or "cgal" (the CLI's --engine and
-/// the Python bindings' engine=), or nothing for any other name.
+/// The names parse_engine accepts, for messages.
+inline constexpr const char* engine_choices = "auto, dewall, hybrid or cgal";
+
+/// The engine a user names: "auto", "dewall", "cgal" or "hybrid" (the CLI's
+/// --engine and the Python bindings' engine=), or nothing for any other name.
 constexpr std::optional<Engine> parse_engine(std::string_view name) {
   if (name == "auto") return Engine::automatic;
   if (name == "dewall") return Engine::dewall;
   if (name == "cgal") return Engine::cgal;
+  if (name == "hybrid") return Engine::hybrid;
   return std::nullopt;
 }
 
@@ -58,7 +75,18 @@ struct Options {
   /// slower than CGAL) and thousands on one sphere or a torus tube.
   /// Measured rule, not a guess about the input's name: see docs/engines.md.
   double handover_candidates_per_search = 150;
+  /// Engine::hybrid and automatic: the largest region left to the incremental
+  /// construction; 0 chooses max(4096, n / 8) (three levels of walls on large
+  /// inputs: enough regions to keep 8 cores busy, few enough that the walls,
+  /// about 4× dearer per simplex, stay a few per cent of the work). Fixed by n,
+  /// never by the number of threads, so the output does not depend on them.
+  std::size_t region_points = 0;
 };
+
+/// The region size Options::region_points asks for, for n points.
+constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
+  return o.region_points ? o.region_points : (n / 8 > 4096 ? n / 8 : 4096);
+}
 
 /// Counters for the paper's Table 1, filled by triangulate.
 struct Statistics {
@@ -71,6 +99,7 @@ struct Statistics {
   std::size_t nodes_visited = 0;       // kd-tree nodes, by all searches
   std::size_t candidates_tested = 0;   // points examined by all searches
   std::size_t tree_leaves = 0;
+  std::size_t region_simplices = 0;    // hybrid: simplices the regions' incremental construction built
   Engine engine = Engine::dewall;            // the construction that built the output
   std::size_t searches_before_handover = 0;  // automatic: DeWall's searches before handing over
   double mean_nodes_per_simplex() const { return simplices ? double(nodes_visited) / double(simplices) : 0.0; }

@@ -173,8 +173,9 @@ class Simplex_search {
 
   /// True when no point is inside the (perturbed) circumsphere of the
   /// positively oriented simplex s: s is a Delaunay simplex. Exact.
-  bool is_empty_sphere(const Simplex<D>& s) {
-    const Simplex_sphere<D> sphere(coords_of(s));
+  bool is_empty_sphere(const Simplex<D>& s) { return is_empty_sphere(s, Simplex_sphere<D>(coords_of(s))); }
+  /// As above, with the sphere of s already built.
+  bool is_empty_sphere(const Simplex<D>& s, const Simplex_sphere<D>& sphere) {
     const Ball_box<D>& ball = sphere.enclosing_box();
     stack_.assign(1, 0);
     while (!stack_.empty()) {
@@ -189,11 +190,18 @@ class Simplex_search {
       for (Index q = n.begin; q < n.end; ++q) {
         if (std::find(s.begin(), s.end(), q) != s.end()) continue;
         if (ball.bounded && !in_box(ball, q)) continue;
-        if (ps_.inside_sphere(s, q)) return false;
+        ++stats_.candidates;  // the hybrid's budget counts these
+        std::optional<bool> inside;
+        if constexpr (kernel::approximate_coordinates_are_exact<K>)
+          inside = ball.bounded ? sphere.inside_box(ps_.coords[q]) : sphere.inside(ps_.coords[q]);
+        if (inside ? *inside : ps_.inside_sphere(s, q)) return false;
       }
     }
     return true;
   }
+
+  /// The sphere of a positively oriented simplex, for is_empty_sphere.
+  Simplex_sphere<D> sphere_of(const Simplex<D>& s) const { return Simplex_sphere<D>(coords_of(s)); }
 
   const Search_stats& stats() const { return stats_; }
 

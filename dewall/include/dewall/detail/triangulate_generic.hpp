@@ -11,6 +11,7 @@
 
 #include "dewall/detail/input.hpp"
 #include "dewall/detail/point_set.hpp"
+#include "dewall/detail/region.hpp"
 #include "dewall/detail/wall.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/options.hpp"
@@ -21,12 +22,14 @@ namespace dewall::detail {
 /// Appends the Delaunay simplices of `points` (input indices, positively
 /// oriented, in DeWall's depth-first order) to `simplices`, and the recursion
 /// level of the wall that built each one to `wall_levels` when it is given.
-/// `budget`, when given, is charged by every search.
+/// `budget`, when given, is charged by every search. `regions`, when given,
+/// triangulates the regions of Options::region_points points (Engine::hybrid).
 /// \throws Invalid_input (see dewall::triangulate_to); Search_budget_spent.
 template <class K>
 Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> points, const Options& options,
                                std::vector<std::array<std::uint32_t, K::dimension + 1>>& simplices,
-                               std::vector<std::uint8_t>* wall_levels, Search_budget* budget = nullptr) {
+                               std::vector<std::uint8_t>* wall_levels, Search_budget* budget = nullptr,
+                               const Region_triangulator<K::dimension>* regions = nullptr) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
   const std::vector<std::size_t> input = distinct_points<K>(k, points);
@@ -35,7 +38,7 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   const Point_set<K> ps(k, std::move(refs), input, options.points_per_leaf);
   require_full_dimension<D>(ps.coords_for_checks());
 
-  Wall_builder<K> builder(ps, options.parallel_depth, budget);
+  Wall_builder<K> builder(ps, options.parallel_depth, budget, regions, region_points_for(options, ps.size()));
   std::vector<Index> all(ps.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
   Built_simplices<D> built;
@@ -59,6 +62,8 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   st.nodes_visited = builder.search_stats().nodes_visited;
   st.candidates_tested = builder.search_stats().candidates;
   st.tree_leaves = ps.tree.leaf_count();
+  st.region_simplices = builder.stats().region_simplices;
+  st.engine = regions ? Engine::hybrid : Engine::dewall;
   return st;
 }
 

@@ -1,0 +1,75 @@
+// Regions: the parts of the DeWall recursion that an incremental construction
+// triangulates instead of more walls (Engine::hybrid, options.hpp).
+//
+// Why it is exact. A region R is a set of points that every wall above it has
+// put on one side. A simplex of the whole triangulation DT(P) with all its
+// vertices in R is empty of P, hence of R: it is a simplex of DT(R) (the
+// perturbation depends on the points alone, so both triangulations break ties
+// alike). Conversely a simplex of DT(R) belongs to DT(P) exactly when its
+// sphere holds no point of P \ R — an exact perturbed in-sphere test. The
+// simplices with vertices on both sides of a wall are the walls' own. So the
+// walls plus, for each region, the simplices of DT(R) whose spheres are empty
+// of the other points are DT(P), each simplex once, whatever builds DT(R).
+//
+// The faces where the region's simplices meet the walls close the walls'
+// active faces (Update). Faces still open afterwards (hull faces, and the
+// faces of a simplex no wall reached) are finished by gift-wrapping once all
+// regions are done (wall.hpp).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "dewall/detail/coords.hpp"
+#include "dewall/detail/face.hpp"
+
+namespace dewall::detail {
+
+/// A simplex of a region's triangulation DT(R), positively oriented, with the
+/// simplex across the face opposite each vertex (an index into the same list),
+/// or -1 where that face is on the region's convex hull.
+template <int D>
+struct Region_cell {
+  Simplex<D> vertices;
+  std::array<std::int32_t, D + 1> neighbor;
+};
+
+/// Builds DT(R) of the points `region` (local indices into `coords`) with the
+/// perturbation of the kernel, replacing `cells`. Returns false when the points
+/// do not span E^D (the region is then left to DeWall).
+template <int D>
+using Region_triangulator =
+    std::function<bool(std::span<const Index> region, const std::vector<Coords<D>>& coords,
+                       std::vector<Region_cell<D>>& cells)>;
+
+/// The open box that every point of a region lies in and every point outside
+/// it does not: the walls above the region cut it along coordinate planes
+/// (split.hpp), and a point on the other side of a cut at value v along axis a
+/// has x_a ≥ v (or ≤ v). A closed ball strictly inside holds no outside point.
+template <int D>
+struct Region_bounds {
+  Coords<D> lo, hi;
+  Region_bounds() {
+    lo.fill(-std::numeric_limits<double>::infinity());
+    hi.fill(std::numeric_limits<double>::infinity());
+  }
+  /// The bounds of the side below (side1) or above the cut at `value` on `axis`.
+  Region_bounds cut(int axis, double value, bool side1) const {
+    Region_bounds b = *this;
+    if (side1) b.hi[axis] = std::min(b.hi[axis], value);
+    else b.lo[axis] = std::max(b.lo[axis], value);
+    return b;
+  }
+  bool strictly_contains(const Coords<D>& box_lo, const Coords<D>& box_hi) const {
+    for (int j = 0; j < D; ++j)
+      if (!(lo[j] < box_lo[j] && box_hi[j] < hi[j])) return false;
+    return true;
+  }
+};
+
+}  // namespace dewall::detail
