@@ -29,7 +29,10 @@
 //     simplex's circumsphere under the kernel's perturbed predicate;
 //  4. the output is a function of the point set and not of the threads: the
 //     serial run (parallel_depth = 0) gives the same list in the same order, and
-//     the reversed input gives the same simplices (mapped through coordinates).
+//     the reversed input gives the same simplices (mapped through coordinates);
+//  5. Engine::hybrid with regions of 6 and of 25 points (so that the walls,
+//     the regions' filter and the finishing gift-wrap all run) gives CGAL's
+//     simplices, the same list on one thread.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -196,6 +199,17 @@ void run(Byte_source& in) {
     mapped.push_back(s);
   }
   CHECK_ON(checker, dewall::test::as_set<D>(mapped) == expected);
+
+  // Property 5: the hybrid engine (walls, then regions by CGAL's incremental
+  // construction), with regions small enough that most inputs have several.
+  for (std::size_t region : {std::size_t{6}, std::size_t{25}}) {
+    const auto h = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::hybrid, .region_points = region});
+    CHECK_ON(checker, h.simplices.size() == expected.size());
+    CHECK_ON(checker, dewall::test::as_set<D>(h.simplices) == expected);
+    const auto h_serial = dewall::triangulate<D>(
+        points, dewall::Options{.parallel_depth = 0, .engine = dewall::Engine::hybrid, .region_points = region});
+    CHECK_ON(checker, h_serial.simplices == h.simplices);
+  }
 }
 
 }  // namespace

@@ -17,9 +17,12 @@
 // about a point is an exact predicate (make_simplex.hpp).
 #pragma once
 
+#include <tbb/parallel_invoke.h>
+
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <map>
 #include <numeric>
 #include <vector>
 
@@ -50,10 +53,10 @@ class Kd_tree {
     order_.resize(coords.size());
     leaf_of_.resize(coords.size());
     std::iota(order_.begin(), order_.end(), Index{0});
-    nodes_.reserve(2 * (coords.size() / leaf_size_ + 1));
-    nodes_.push_back({});
+    count_nodes(coords.size());
+    nodes_.resize(subtree_nodes_.at(coords.size()));
     nodes_[0].parent = 0;
-    build(coords, 0, 0, static_cast<Index>(coords.size()));
+    build(coords, 0, 0, static_cast<Index>(coords.size()), 1);
   }
 
   const std::vector<Index>& order() const { return order_; }
@@ -69,7 +72,11 @@ class Kd_tree {
   const Coords<D>& upper() const { return nodes_[0].hi; }
 
  private:
-  void build(const std::vector<Coords<D>>& coords, Index at, Index begin, Index end) {
+  // The layout is fixed by the sizes alone: a node's children are a pair at
+  // `pair`, then the left child's descendants, then the right child's (the
+  // order a serial depth-first build allocates them in). So both halves can be
+  // built at once, each knowing where its nodes go.
+  void build(const std::vector<Coords<D>>& coords, Index at, Index begin, Index end, Index pair) {
     Node& n = nodes_[at];
     n.begin = begin;
     n.end = end;
@@ -84,9 +91,10 @@ class Kd_tree {
     int axis = 0;
     for (int j = 1; j < D; ++j)
       if (n.hi[j] - n.lo[j] > n.hi[axis] - n.lo[axis]) axis = j;
-    // A box of zero width holds points with equal approximate coordinates
-    // (distinct only in a kernel with more precise points): a leaf, whatever its size.
-    if (end - begin <= leaf_size_ || !(n.hi[axis] > n.lo[axis])) {
+    // (A box of zero width, points with equal approximate coordinates in a
+    // kernel with more precise points, is split like any other: the layout
+    // depends on the sizes only.)
+    if (end - begin <= leaf_size_) {
       std::fill(leaf_of_.begin() + begin, leaf_of_.begin() + end, at);
       return;
     }
@@ -101,16 +109,41 @@ class Kd_tree {
       }
       return false;
     });
-    const auto child = static_cast<Index>(nodes_.size());
-    nodes_[at].first_child = child;  // `n` may dangle after the push_back below
-    nodes_.push_back({});
-    nodes_.push_back({});
-    nodes_[child].parent = nodes_[child + 1].parent = at;
-    build(coords, child, begin, middle);
-    build(coords, child + 1, middle, end);
+    n.first_child = pair;
+    nodes_[pair].parent = nodes_[pair + 1].parent = at;
+    const Index left_pairs = pair + 2;
+    const auto right_pairs = static_cast<Index>(left_pairs + subtree_nodes_.at(middle - begin) - 1);
+    auto left = [&] { build(coords, pair, begin, middle, left_pairs); };
+    auto right = [&] { build(coords, pair + 1, middle, end, right_pairs); };
+    if (end - begin >= parallel_points) tbb::parallel_invoke(left, right);
+    else {
+      left();
+      right();
+    }
   }
 
+  /// subtree_nodes_[m]: the nodes of a subtree over m points. Halving gives at
+  /// most two sizes per level (m and m + 1 split into sizes b and b + 1), so
+  /// the table has O(log n) entries.
+  void count_nodes(std::size_t n) {
+    std::vector<std::vector<std::size_t>> levels{{n}};
+    while (levels.back().front() > leaf_size_ || levels.back().back() > leaf_size_) {
+      std::vector<std::size_t> next;
+      for (std::size_t m : levels.back())
+        if (m > leaf_size_) next.insert(next.end(), {m / 2, m - m / 2});
+      std::sort(next.begin(), next.end());
+      next.erase(std::unique(next.begin(), next.end()), next.end());
+      levels.push_back(next);
+    }
+    for (auto level = levels.rbegin(); level != levels.rend(); ++level)
+      for (std::size_t m : *level)
+        subtree_nodes_[m] = m <= leaf_size_ ? 1 : 1 + subtree_nodes_.at(m / 2) + subtree_nodes_.at(m - m / 2);
+  }
+
+  // Subtrees of fewer points are built serially (a task costs more than that).
+  static constexpr Index parallel_points = 1 << 15;
   std::size_t leaf_size_ = 8;
+  std::map<std::size_t, std::size_t> subtree_nodes_;  // read-only while building
   std::vector<Index> order_;
   std::vector<Index> leaf_of_;  // by position: a search starts at a face vertex's leaf
   std::vector<Node> nodes_;

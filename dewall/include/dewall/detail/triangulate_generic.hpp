@@ -46,9 +46,7 @@ Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> 
   simplices.reserve(simplices.size() + built.size());
   if (wall_levels) wall_levels->reserve(wall_levels->size() + built.size());
   built.for_each([&](const Built_simplex<D>& s) {
-    std::array<std::uint32_t, D + 1> out;
-    for (int i = 0; i <= D; ++i) out[i] = static_cast<std::uint32_t>(ps.input_index[s.vertices[i]]);
-    simplices.push_back(out);
+    simplices.push_back(s.vertices);
     if (wall_levels) wall_levels->push_back(s.wall_level);
   });
 
