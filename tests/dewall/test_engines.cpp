@@ -77,8 +77,8 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
 TEST_CASE("engines: points on a sphere hand over to the incremental construction", "[engine]") {
   // Every search examines about half the points: DeWall is quadratic here,
   // and so are the hybrid's walls and region filter (checked below, smaller).
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 1200, 5), {}) == Engine::cgal);
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 1200, 0), {}) == Engine::cgal);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 600, 5), {}) == Engine::cgal);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 600, 0), {}) == Engine::cgal);
   CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6), {}) == Engine::cgal);
   // Exactly cospherical regions: every cell's sphere is the whole sphere.
   check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 150, 0));
