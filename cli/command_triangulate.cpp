@@ -1,5 +1,6 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stats] [--quiet]
 #include <cstdio>
+#include <optional>
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
@@ -12,12 +13,14 @@ namespace dewall::cli {
 int command_triangulate(int argc, char** argv) {
   std::string output = "-";
   std::string engine = "auto";
+  std::optional<std::string> threads;  // absent: all cores
   bool stats = false, quiet = false;
   const auto operands = parse_arguments(
       argc, argv, 1,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--engine") engine = next_arg(i, argc, argv);
+        else if (a == "--threads") threads = next_arg(i, argc, argv);
         else if (a == "--stats") stats = true;
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
@@ -28,6 +31,11 @@ int command_triangulate(int argc, char** argv) {
   Options options;
   if (const auto e = parse_engine(engine)) options.engine = *e;
   else throw Usage_error("unknown engine " + io::quoted(engine) + " (" + engine_choices + ")");
+  if (threads) {
+    const long n = parse_long(*threads, "thread count");
+    if (n < 1 || n > 4096) throw Usage_error("--threads must be 1 to 4096, not " + *threads);
+    options.threads = static_cast<int>(n);
+  }
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
@@ -53,7 +61,8 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--stats] [--quiet]\n"
+    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N]\n"
+    "              [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -68,6 +77,8 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      handing over to CGAL alone when the walls' searches prove too costly\n"
     "      (points on or near one sphere, thin surfaces). dewall (walls all the\n"
     "      way down, the paper's algorithm) and cgal force one construction.\n"
+    "      --threads N: at most N threads (default: all cores); the output is the\n"
+    "      same, byte for byte, for every N.\n"
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"

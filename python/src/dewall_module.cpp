@@ -12,8 +12,6 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <tbb/task_arena.h>
-
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -101,15 +99,6 @@ py::array view_int32(const T* data, py::ssize_t rows, py::ssize_t columns, py::h
   return a;
 }
 
-/// Runs f with at most `threads` threads (TBB arena), or TBB's default.
-template <class F>
-auto with_threads(std::optional<int> threads, F&& f) {
-  if (!threads) return f();
-  if (*threads < 1) throw py::value_error("threads must be at least 1, not " + std::to_string(*threads));
-  tbb::task_arena arena(*threads);
-  return arena.execute(std::forward<F>(f));
-}
-
 py::dict statistics_dict(const dewall::Statistics& s, double seconds) {
   py::dict d;
   d["engine"] = dewall::engine_name(s.engine);
@@ -122,6 +111,7 @@ py::dict statistics_dict(const dewall::Statistics& s, double seconds) {
   d["candidates_tested"] = s.candidates_tested;
   d["tree_leaves"] = s.tree_leaves;
   d["searches_before_handover"] = s.searches_before_handover;
+  d["region_simplices"] = s.region_simplices;
   d["build_seconds"] = seconds;
   return d;
 }
@@ -225,6 +215,10 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
     throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
   dewall::Options options;
   options.engine = *e;
+  if (threads) {
+    if (*threads < 1) throw py::value_error("threads must be at least 1, not " + std::to_string(*threads));
+    options.threads = *threads;
+  }
   return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto d) {
     constexpr int D = d();
     const auto view = as_points<D>(points);
@@ -233,7 +227,7 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
     {
       py::gil_scoped_release release;  // other Python threads run meanwhile
       const auto start = std::chrono::steady_clock::now();
-      t = with_threads(threads, [&] { return dewall::triangulate<Kernel<D>>(view, options); });
+      t = dewall::triangulate<Kernel<D>>(view, options);
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     Cells<D> cells;

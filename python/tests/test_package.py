@@ -42,6 +42,8 @@ def test_statistics(rng):
     tri = dewall.Delaunay(rng.random((200, 3)), engine="cgal")
     assert tri.statistics["engine"] == "cgal" and tri.statistics["simplices"] == tri.nsimplex
     assert "200 points in E^3" in repr(tri)
+    hybrid = dewall.Delaunay(rng.random((5000, 3)), engine="hybrid").statistics
+    assert hybrid["engine"] == "hybrid" and 0 < hybrid["region_simplices"] <= hybrid["simplices"]
 
 
 def test_gil_released_during_a_large_triangulation():

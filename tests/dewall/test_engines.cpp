@@ -108,6 +108,21 @@ TEST_CASE("engines: the hybrid's regions on degenerate inputs", "[engine]") {
   }
 }
 
+TEST_CASE("engines: the same list for every number of threads", "[engine][threads]") {
+  // Options::threads: the list, not only the set, is a function of the points.
+  const std::vector<std::vector<dewall::kernel::Point_d<3>>> inputs{
+      generated<3>(dewall::io::Point_kind::uniform, 20000, 15),  // 8 regions of the default size
+      generated<3>(dewall::io::Point_kind::bubbles, 6000, 16), generated<3>(dewall::io::Point_kind::grid, 1000, 0)};
+  for (const auto& points : inputs)
+    for (Engine engine : {Engine::automatic, Engine::dewall}) {
+      const auto reference = dewall::triangulate<3>(points, Options{.threads = 1, .engine = engine});
+      for (int threads : {2, 3, 8, 0})
+        CHECK(dewall::triangulate<3>(points, Options{.threads = threads, .engine = engine}).simplices ==
+              reference.simplices);
+    }
+  CHECK_THROWS_AS(dewall::triangulate<3>(inputs[2], Options{.threads = -1}), std::invalid_argument);
+}
+
 TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[engine]") {
   std::mt19937_64 rng(10);
   std::uniform_int_distribution<int> coordinate(0, 3);

@@ -224,6 +224,25 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
     CHECK(cli.with_stdin("triangulate - --engine qhull", "0 0\n1 0\n0 1\n").status == 2);
     CHECK(cli.with_stdin("triangulate - --engine", "0 0\n1 0\n0 1\n").status == 2);
   }
+  SECTION("--threads N: the same bytes for every N; bad counts are usage errors") {
+    std::string text;
+    std::mt19937_64 rng(24);
+    for (const auto& q : dewall::test::uniform<3>(9000, rng))
+      text += std::to_string(q[0]) + " " + std::to_string(q[1]) + " " + std::to_string(q[2]) + "\n";
+    const auto all_cores = cli.with_stdin("triangulate -", text);
+    REQUIRE(all_cores.status == 0);
+    CHECK(!all_cores.out.empty());
+    for (const char* n : {"1", "2", "3"}) {
+      const auto r = cli.with_stdin(std::string("triangulate - --threads ") + n, text);
+      CHECK(r.status == 0);
+      CHECK(r.out == all_cores.out);
+    }
+    for (const char* bad : {"0", "-2", "two", "1.5", ""}) {
+      const auto r = cli.with_stdin(std::string("triangulate - --threads '") + bad + "'", text);
+      CHECK(r.status == 2);
+      CHECK(r.err.find("thread") != std::string::npos);
+    }
+  }
 }
 
 TEMPLATE_TEST_CASE_SIG("far from 1: scaling the input by 2^±600 changes nothing, not even the work done", "[dewall][scale]",

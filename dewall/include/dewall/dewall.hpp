@@ -25,6 +25,8 @@
 // in the caller's file, which then must not use such flags (floating_point.hpp).
 #pragma once
 
+#include <tbb/task_arena.h>
+
 #include <array>
 #include <cstdint>
 #include <span>
@@ -62,7 +64,7 @@ inline constexpr bool always_false = false;
 /// Runs the triangulation with kernel K: compiled for the project's kernel
 /// (with the choice of engine, Options::engine), here for any other (DeWall).
 template <kernel::DelaunayKernel K>
-Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
+Statistics run_engine(std::span<const typename K::Point_d> points, const Options& options, const K& k,
                              std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
   if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
     (void)k;
@@ -83,6 +85,18 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
     return triangulate_generic<K>(k, points, options, simplices, wall_levels);
 #endif
   }
+}
+
+/// run_engine in an arena of Options::threads threads, when that is given.
+template <kernel::DelaunayKernel K>
+Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
+                             std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
+  if (options.threads < 0)
+    throw std::invalid_argument("dewall: Options::threads must be 0 (all cores) or positive, not " +
+                                std::to_string(options.threads));
+  if (options.threads == 0) return run_engine<K>(points, options, k, simplices, wall_levels);
+  tbb::task_arena arena(options.threads);
+  return arena.execute([&] { return run_engine<K>(points, options, k, simplices, wall_levels); });
 }
 
 }  // namespace detail
