@@ -99,10 +99,11 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, std::vector<Region
 }  // namespace
 
 template <int D>
-Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices) {
+Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices,
+                                 const std::vector<std::size_t>* given_distinct) {
   using K = kernel::Filtered_kernel_d<D>;
   const kernel::Fp_environment_guard guard;  // CGAL's filters assume the default environment too
-  const std::vector<std::size_t> distinct = distinct_points<K>(K{}, points);
+  const std::vector<std::size_t> distinct = given_distinct ? *given_distinct : distinct_points<K>(K{}, points);
   std::vector<std::array<double, D>> coords(distinct.size());
   for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
   require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
@@ -157,7 +158,8 @@ bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D
 }
 
 #define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \
-  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, std::vector<Simplex<D>>&); \
+  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, std::vector<Simplex<D>>&,    \
+                                               const std::vector<std::size_t>*);                                \
   template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,                   \
                                      std::vector<Region_cell<D>>&);
 DEWALL_INSTANTIATE_CGAL_ENGINE(2)

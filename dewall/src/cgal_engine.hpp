@@ -18,8 +18,10 @@ namespace dewall::detail {
 /// too few distinct points, points not spanning E^D), then CGAL's triangulation
 /// of the distinct points (the first occurrence of each), appended to
 /// `simplices` as positively oriented input indices, in CGAL's cell order.
+/// `distinct`, when given, is distinct_points(points), computed by the caller.
 template <int D>
-Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices);
+Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices,
+                                 const std::vector<std::size_t>* distinct = nullptr);
 
 /// The region triangulator of Engine::hybrid (region.hpp): CGAL's
 /// triangulation of the points `region`, positively oriented cells.

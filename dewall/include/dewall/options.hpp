@@ -11,10 +11,12 @@ namespace dewall {
 /// (the Delaunay triangulation under CGAL's symbolic perturbation); only the
 /// time and the statistics differ.
 enum class Engine {
-  /// Engine::hybrid, handing over to the incremental construction when the
-  /// walls' searches prove the input is one no gift-wrapping search is fast on
-  /// (points on or near one sphere, thin surfaces): see
-  /// Options::handover_candidates_per_search.
+  /// In 2D and 3D, Engine::hybrid, handing over to the incremental
+  /// construction when the walls' searches prove the input is one no
+  /// gift-wrapping search is fast on (points on or near one sphere, thin
+  /// surfaces, lattices): see Options::handover_candidates_per_search. In 4D
+  /// and up, the incremental construction (the hybrid's regions are CGAL's dD
+  /// triangulation there, and the walls only add to it).
   automatic,
   /// DeWall only: walls all the way down (the paper's algorithm).
   dewall,
@@ -67,16 +69,18 @@ struct Options {
   /// (Filtered_kernel_d); with another kernel, automatic means DeWall.
   Engine engine = Engine::automatic;
   /// Engine::automatic hands over to the incremental construction once the
-  /// searches of DeWall's walls have examined more than this many candidate
-  /// points per search on average (counted from the first, with an allowance of
-  /// 64 searches' worth but at most n candidates, so that a few costly
-  /// searches near the hull do not decide). A search must look at every point
-  /// near the sphere it proves empty. With the kd-tree search the running
-  /// average never exceeds 16 on 10^6 uniform 3D points, 25–55 on grids,
-  /// clusters and coplanar layers, 26 / 51 / 97 on uniform points in 4D / 5D /
-  /// 6D; it is 350–580 on noisy sphere and torus shells (where DeWall is 8–9×
-  /// slower than CGAL) and thousands on one sphere or a torus tube.
-  /// Measured rule, not a guess about the input's name: see docs/engines.md.
+  /// searches of any task of DeWall's recursion have cost more than this many
+  /// candidate points per search on average, a predicate evaluation that the
+  /// filters leave to the exact stage costing 100 candidates (the interval
+  /// stage 10), counted from the first search, with an allowance of 64
+  /// searches' worth plus 4^(D−2)·n candidates (search_budget.hpp). A search
+  /// must look at every point near the sphere it proves empty. With the
+  /// kd-tree search the running average never exceeds 16 on 10^6 uniform 3D
+  /// points, 30–55 on clusters and coplanar layers; it is 350–580 on noisy
+  /// sphere and torus shells (where DeWall is 8–9× slower than CGAL),
+  /// thousands on one sphere or a torus tube, and on lattices and cospherical
+  /// points the exact tests decide. Measured rule, not a guess about the
+  /// input's name: see docs/engines.md.
   double handover_candidates_per_search = 150;
   /// Engine::hybrid and automatic: the largest region left to the incremental
   /// construction; 0 chooses max(4096, n / 8) (three levels of walls on large

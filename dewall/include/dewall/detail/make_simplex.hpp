@@ -28,6 +28,7 @@
 
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/pencil_rank.hpp"
+#include "dewall/detail/search_budget.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
@@ -52,13 +53,17 @@ class Simplex_search {
   using Node = typename Kd_tree<D>::Node;
 
  public:
-  explicit Simplex_search(const Point_set<K>& ps) : ps_(ps) {}
+  /// budget: when given, every search and emptiness test is charged to (a
+  /// copy of) it, and throws Search_budget_spent when it is spent.
+  explicit Simplex_search(const Point_set<K>& ps, const std::optional<Search_budget>& budget = std::nullopt)
+      : ps_(ps), budget_(budget) {}
 
   /// The apex of the Delaunay simplex on the outer side of f, or nothing when
   /// f is on the convex hull (no point strictly outside).
   /// \pre f is a face of the Delaunay triangulation.
   std::optional<Index> make_simplex(const Face<D>& f) {
     ++stats_.searches;
+    if (budget_) budget_->begin_search();
     const Kd_tree<D>& tree = ps_.tree;
     std::optional<Index> best;
     Simplex<D> s;
@@ -85,7 +90,7 @@ class Simplex_search {
     auto consider = [&](Index q) {
       if (is_vertex(f, q) || q == best) return;
       if (best && ball.bounded && !in_box(ball, q)) return;
-      ++stats_.candidates;
+      count_candidate();
       std::optional<kernel::Sign> side;
       if constexpr (kernel::approximate_coordinates_are_exact<K>) side = side_filter(ps_.coords[q]);
       if (!side) side = ps_.orientation(f, q);
@@ -168,6 +173,7 @@ class Simplex_search {
       visit_subtree(sibling, rank, best, may_hold_better, scan);
       from = tree.node(from).parent;
     }
+    if (budget_) budget_->charge(stats_.candidates);
     return best;
   }
 
@@ -176,6 +182,7 @@ class Simplex_search {
   bool is_empty_sphere(const Simplex<D>& s) { return is_empty_sphere(s, Simplex_sphere<D>(coords_of(s))); }
   /// As above, with the sphere of s already built.
   bool is_empty_sphere(const Simplex<D>& s, const Simplex_sphere<D>& sphere) {
+    if (budget_) budget_->begin_search();
     const Ball_box<D>& ball = sphere.enclosing_box();
     stack_.assign(1, 0);
     while (!stack_.empty()) {
@@ -190,13 +197,17 @@ class Simplex_search {
       for (Index q = n.begin; q < n.end; ++q) {
         if (std::find(s.begin(), s.end(), q) != s.end()) continue;
         if (ball.bounded && !in_box(ball, q)) continue;
-        ++stats_.candidates;  // the hybrid's budget counts these
+        count_candidate();
         std::optional<bool> inside;
         if constexpr (kernel::approximate_coordinates_are_exact<K>)
           inside = ball.bounded ? sphere.inside_box(ps_.coords[q]) : sphere.inside(ps_.coords[q]);
-        if (inside ? *inside : ps_.inside_sphere(s, q)) return false;
+        if (inside ? *inside : ps_.inside_sphere(s, q)) {
+          if (budget_) budget_->charge(stats_.candidates);
+          return false;
+        }
       }
     }
+    if (budget_) budget_->charge(stats_.candidates);
     return true;
   }
 
@@ -238,6 +249,11 @@ class Simplex_search {
     for (int i = 0; i <= D; ++i) c[i] = &ps_.coords[s[i]];
     return c;
   }
+  /// One more point examined; a long search is charged as it goes (every
+  /// 512 points: a few microseconds, or a millisecond of exact tests).
+  void count_candidate() {
+    if ((++stats_.candidates & 511) == 0 && budget_) budget_->charge(stats_.candidates);
+  }
   static bool is_vertex(const Face<D>& f, Index q) { return std::find(f.begin(), f.end(), q) != f.end(); }
   bool in_box(const Ball_box<D>& b, Index q) const {
     const auto& x = ps_.coords[q];
@@ -252,6 +268,7 @@ class Simplex_search {
   }
 
   const Point_set<K>& ps_;
+  std::optional<Search_budget> budget_;
   std::vector<Index> stack_;  // scratch: the nodes still to visit
   // The first subtree scanned: fewer points make the first best worse (more
   // changes of best), more make the scan longer; measured on 10^5 uniform 3D points.

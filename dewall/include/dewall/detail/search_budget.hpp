@@ -1,39 +1,72 @@
-// Search_budget: what Engine::automatic measures of DeWall's cost (options.hpp),
-// shared by every task of one triangulation. Integer bookkeeping only: it never
-// touches the triangulation, it only stops DeWall.
+// Search_budget: what Engine::automatic measures of DeWall's cost (options.hpp).
+// Integer bookkeeping only: it never touches the triangulation, it only stops
+// DeWall.
+//
+// One budget per Simplex_search, and so per task of the recursion: the tasks
+// are fixed by the points (Options::parallel_depth), not by the threads, and
+// each task's searches run in one order, so whether a budget is spent, and so
+// the output, is the same for every number of threads. (One budget shared by
+// all tasks would see their charges interleaved differently on each run.)
 #pragma once
 
-#include <algorithm>
-#include <atomic>
 #include <cstddef>
+#include <cstdint>
+
+#include "dewall/kernel/predicate_stats.hpp"
 
 namespace dewall::detail {
 
-/// Thrown out of the DeWall recursion when the budget is spent.
-struct Search_budget_spent {};
+/// Thrown out of the DeWall recursion when a budget is spent.
+struct Search_budget_spent {
+  std::size_t searches;  // of the task whose budget it was
+};
 
 class Search_budget {
  public:
-  /// per_search: Options::handover_candidates_per_search; n: the number of points.
-  Search_budget(double per_search, std::size_t n)
-      : per_search_(per_search), allowance_(std::min(64 * per_search, static_cast<double>(n))) {}
+  /// The cost of a predicate evaluation the filters left to the interval or
+  /// the exact stage, in candidates (one candidate, examined with the filters
+  /// deciding: about 20 ns). bench_predicates, side_of_sphere 2D / 3D: filter
+  /// 4.6 / 9.9 ns, exact 0.9–1.3 / 2.1–2.7 µs. On points on one circle or
+  /// sphere nearly every test goes to the exact stage: counting candidates
+  /// alone let DeWall spend 2–4× CGAL's whole time before handing over.
+  static constexpr std::size_t interval_cost = 10, exact_cost = 100;
 
-  /// Records one search that examined `candidates` points.
-  /// \throws Search_budget_spent once all searches so far examined more than
-  /// per_search × searches + min(64 × per_search, n) candidates: an allowance
-  /// for a few costly searches near the hull, but never more than one look at
-  /// every point (on small inputs the incremental construction takes less time
-  /// than 64 searches of a sphere's points).
-  void charge(std::size_t candidates) {
-    const std::size_t s = searches_.fetch_add(1, std::memory_order_relaxed) + 1;
-    const std::size_t c = candidates_.fetch_add(candidates, std::memory_order_relaxed) + candidates;
-    if (static_cast<double>(c) > per_search_ * static_cast<double>(s) + allowance_) throw Search_budget_spent{};
+  /// per_search: Options::handover_candidates_per_search; n: the number of
+  /// points; d: their dimension.
+  Search_budget(double per_search, std::size_t n, int d)
+      : per_search_(per_search), allowance_(64 * per_search + static_cast<double>(n << (2 * (d - 2)))) {}
+
+  /// A search (or an emptiness test) begins: the slow-path evaluations of this
+  /// thread are charged from here.
+  void begin_search() {
+    ++searches_;
+    mark_ = kernel::slow_path_counts();
   }
-  std::size_t searches() const { return searches_.load(std::memory_order_relaxed); }
+
+  /// Charges the search in progress: `candidates`, the candidates of all
+  /// searches so far, and the slow-path evaluations since the last call.
+  /// \throws Search_budget_spent once the cost exceeds per_search × searches +
+  /// 64 × per_search + 4^(d−2) × n: an allowance for a few costly searches
+  /// (near the hull, and the first simplex's, whose attempts on faces that are
+  /// not Delaunay have large spheres: 4.5·10^4 candidates on 3·10^4 uniform 4D
+  /// points) and a few looks at every point. 4^(d−2) × n candidates cost 2 %
+  /// of CGAL's time or less (its cost per point grows faster with d: 0.8, 4
+  /// and 60 µs in 2D, 3D and 4D here); on one circle or sphere they are
+  /// n / 100 exact tests in 2D. Called during long searches too, so one
+  /// search of a sphere's points does not run to its end.
+  void charge(std::size_t candidates) {
+    const kernel::Slow_path_counts& now = kernel::slow_path_counts();
+    slow_cost_ += interval_cost * (now.interval - mark_.interval) + exact_cost * (now.exact - mark_.exact);
+    mark_ = now;
+    if (static_cast<double>(candidates + slow_cost_) > per_search_ * static_cast<double>(searches_) + allowance_)
+      throw Search_budget_spent{searches_};
+  }
 
  private:
   double per_search_, allowance_;
-  std::atomic<std::size_t> searches_{0}, candidates_{0};
+  std::size_t searches_ = 0;
+  std::uint64_t slow_cost_ = 0;
+  kernel::Slow_path_counts mark_;
 };
 
 }  // namespace dewall::detail

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -22,17 +23,21 @@ namespace dewall::detail {
 /// Appends the Delaunay simplices of `points` (input indices, positively
 /// oriented, in DeWall's depth-first order) to `simplices`, and the recursion
 /// level of the wall that built each one to `wall_levels` when it is given.
-/// `budget`, when given, is charged by every search. `regions`, when given,
-/// triangulates the regions of Options::region_points points (Engine::hybrid).
+/// `budget`, when given, is charged by every search (a copy per task).
+/// `regions`, when given, triangulates the regions of Options::region_points
+/// points (Engine::hybrid). `distinct`, when given, is distinct_points(points),
+/// computed by the caller.
 /// \throws Invalid_input (see dewall::triangulate_to); Search_budget_spent.
 template <class K>
 Statistics triangulate_generic(const K& k, std::span<const typename K::Point_d> points, const Options& options,
                                std::vector<std::array<std::uint32_t, K::dimension + 1>>& simplices,
-                               std::vector<std::uint8_t>* wall_levels, Search_budget* budget = nullptr,
-                               const Region_triangulator<K::dimension>* regions = nullptr) {
+                               std::vector<std::uint8_t>* wall_levels,
+                               const std::optional<Search_budget>& budget = std::nullopt,
+                               const Region_triangulator<K::dimension>* regions = nullptr,
+                               const std::vector<std::size_t>* distinct = nullptr) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
-  const std::vector<std::size_t> input = distinct_points<K>(k, points);
+  const std::vector<std::size_t> input = distinct ? *distinct : distinct_points<K>(k, points);
   std::vector<const typename K::Point_d*> refs(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
   const Point_set<K> ps(k, std::move(refs), input, options.points_per_leaf);

@@ -202,13 +202,16 @@ template <class Recipe, int D>
   // input (lattices: small integers compute without rounding), which intervals
   // cannot decide: go straight to the exact stage. Skipping a stage never
   // changes an answer, only its cost.
+  Slow_path_counts& slow = slow_path_counts();
   if (computed != 0) {
     if (auto s = interval<Recipe, D>(p)) {
       count(stats.interval);
+      ++slow.interval;
       return *s;
     }
   }
   count(stats.exact);
+  ++slow.exact;
   return exact<Recipe, D>(p);
 }
 
