@@ -38,7 +38,7 @@ int command_certify(int argc, char** argv) {
   // Witnesses name input numbers as the files do (TetGen may count from 1).
   const std::size_t shift = points.first_index;
   const auto name = [&](std::size_t r) {
-    return "simplex " + std::to_string(r + shift) + " (" + sname + ":" + std::to_string(list.lines[r]) + ")";
+    return "simplex " + std::to_string(r + shift) + " (" + list.where(sname, r) + ")";
   };
   const auto shifted = [&](certify::Violation v) {
     for (auto& f : v.face) f = static_cast<std::uint32_t>(f + shift);
@@ -46,6 +46,10 @@ int command_certify(int argc, char** argv) {
     return v;
   };
   const bool ok = report.delaunay && (report.canonical || !canonical);
+  // A text file's line of row r, as a JSON member; binary files have none.
+  const auto line = [&](const char* key, std::size_t r) {
+    return list.lines.empty() ? std::string() : ",\"" + std::string(key) + "\":" + std::to_string(list.lines[r]);
+  };
 
   if (json) {
     std::string out = "{\"delaunay\":" + std::string(report.delaunay ? "true" : "false") +
@@ -64,10 +68,9 @@ int command_certify(int argc, char** argv) {
       out += i ? "," : "";
       out += "{\"rule\":" + io::json_string(certify::rule_name(v.rule)) + ",\"fatal\":" + (v.fatal() ? "true" : "false");
       if (v.simplex != certify::npos)
-        out += ",\"simplex\":" + std::to_string(v.simplex + shift) + ",\"line\":" + std::to_string(list.lines[v.simplex]);
+        out += ",\"simplex\":" + std::to_string(v.simplex + shift) + line("line", v.simplex);
       if (v.other_simplex != certify::npos)
-        out += ",\"other_simplex\":" + std::to_string(v.other_simplex + shift) +
-               ",\"other_line\":" + std::to_string(list.lines[v.other_simplex]);
+        out += ",\"other_simplex\":" + std::to_string(v.other_simplex + shift) + line("other_line", v.other_simplex);
       if (!v.face.empty()) {
         out += ",\"face\":[";
         for (std::size_t j = 0; j < v.face.size(); ++j) {
@@ -110,8 +113,8 @@ int command_certify(int argc, char** argv) {
 const bool registered = register_command({"certify", command_certify,
     "  certify POINTS SIMPLICES [--canonical] [--all] [--json]\n"
     "      Decides with exact predicates whether SIMPLICES (one simplex per line,\n"
-    "      zero-based indices, any order; Qhull's 'qdelaunay Qt i' output; or\n"
-    "      TetGen .ele) is a Delaunay triangulation of POINTS, and whether it is\n"
+    "      zero-based indices, any order; Qhull's 'qdelaunay Qt i' output; TetGen\n"
+    "      .ele; or the binary .dwsx format) is a Delaunay triangulation of POINTS, and whether it is\n"
     "      the canonical one (CGAL's and dewall's). Exit 0 when it is Delaunay\n"
     "      (with --canonical: only when also canonical), 1 with the first\n"
     "      violation and its witness otherwise, 2 for unreadable input.\n"

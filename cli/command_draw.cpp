@@ -38,7 +38,7 @@ std::vector<Triangle> read_triangles(const std::string& path, const io::Point_ta
     for (std::size_t i = 0; i < 3; ++i) {
       const auto v = list.table.indices[3 * r + i];
       if (v >= table.size())
-        throw io::Parse_error(name + ":" + std::to_string(list.lines[r]) + ": point index " +
+        throw io::Parse_error(list.where(name, r) + ": point index " +
                               std::to_string(v + table.first_index) + " out of range (" +
                               std::to_string(table.size()) + " points)");
       triangles[r][i] = v;

@@ -7,22 +7,11 @@
 #include <ostream>
 #include <vector>
 
+#include "binary_format.hpp"
 #include "dewall/io/progress.hpp"
 
 namespace dewall::io {
 namespace {
-
-// The header fields are decoded byte by byte, so the code is the same on any
-// host; only the coordinate block needs a swap on a big-endian one.
-std::uint64_t load_le(const unsigned char* p, int bytes) {
-  std::uint64_t v = 0;
-  for (int i = bytes - 1; i >= 0; --i) v = (v << 8) | p[i];
-  return v;
-}
-
-void store_le(unsigned char* p, std::uint64_t v, int bytes) {
-  for (int i = 0; i < bytes; ++i, v >>= 8) p[i] = static_cast<unsigned char>(v & 0xff);
-}
 
 void swap_doubles_if_big_endian(double* values, std::size_t n) {
   if constexpr (std::endian::native == std::endian::big) {
@@ -44,18 +33,9 @@ constexpr std::size_t chunk_values = std::size_t{1} << 20;
 }  // namespace
 
 Point_table read_binary_points(std::istream& in, const std::string& name, Progress* progress) {
-  unsigned char header[binary_points_header_size];
-  in.read(reinterpret_cast<char*>(header), binary_points_header_size);
-  const auto got_header = static_cast<std::size_t>(in.gcount());
-  if (got_header >= 4 && std::memcmp(header, binary_points_magic, 4) != 0)
-    throw Parse_error(name + ": not a binary point file (the first bytes are not 'DWPT')");
-  if (got_header < binary_points_header_size)
-    throw Parse_error(name + ": truncated: the header needs " + std::to_string(binary_points_header_size) +
-                      " bytes, the file has " + std::to_string(got_header));
-  const auto version = load_le(header + 4, 4);
-  const auto dimension = load_le(header + 8, 4);
-  const auto flags = load_le(header + 12, 4);
-  const auto count = load_le(header + 16, 8);
+  const auto header = detail::read_binary_header(in, name, binary_points_magic, "binary point file");
+  const std::uint64_t version = header.version, dimension = header.dimension, flags = header.field12,
+                      count = header.count;
   if (version != binary_points_version)
     throw Parse_error(name + ": binary point format version " + std::to_string(version) + " is not supported (1)");
   if (flags != 0) throw Parse_error(name + ": unknown flags " + std::to_string(flags) + " in the header (expected 0)");
@@ -67,31 +47,10 @@ Point_table read_binary_points(std::istream& in, const std::string& name, Progre
     throw Parse_error(name + ": the header announces an impossible point count " + std::to_string(count));
   const std::uint64_t values = count * dimension;
   const std::uint64_t expected_size = binary_points_file_size(count, static_cast<int>(dimension));
-  auto truncated = [&](std::uint64_t size) {
-    return Parse_error(name + ": truncated: the header announces " + std::to_string(count) + " points of dimension " +
-                       std::to_string(dimension) + " (" + std::to_string(expected_size) + " bytes), the file has " +
-                       std::to_string(size) + " bytes");
-  };
-
+  const std::string announced = std::to_string(count) + " points of dimension " + std::to_string(dimension);
   // A seekable stream (a file) tells its size up front: reject a wrong size
   // before reading, and allocate once.
-  const auto here = in.tellg();
-  bool sized = false;
-  if (here != std::streampos(-1)) {
-    in.seekg(0, std::ios::end);
-    const auto end = in.tellg();
-    in.seekg(here);
-    if (end != std::streampos(-1) && in) {
-      const auto size = static_cast<std::uint64_t>(end);
-      if (size < expected_size) throw truncated(size);
-      if (size > expected_size)
-        throw Parse_error(name + ": " + std::to_string(size - expected_size) +
-                          " bytes after the last point (the header announces " + std::to_string(count) +
-                          " points of dimension " + std::to_string(dimension) + ")");
-      sized = true;
-    }
-    in.clear();
-  }
+  const bool sized = detail::check_binary_size(in, name, values * 8, announced, "point");
 
   Point_table t;
   t.dimension = static_cast<int>(dimension);
@@ -103,26 +62,21 @@ Point_table read_binary_points(std::istream& in, const std::string& name, Progre
     t.coordinates.resize(read + n);
     in.read(reinterpret_cast<char*>(t.coordinates.data() + read), static_cast<std::streamsize>(n * 8));
     const auto got = static_cast<std::uint64_t>(in.gcount());
-    if (got != n * 8) throw truncated(binary_points_header_size + read * 8 + got);
+    if (got != n * 8)
+      throw Parse_error(detail::binary_truncated(name, announced, values * 8, binary_points_header_size + read * 8 + got));
     swap_doubles_if_big_endian(t.coordinates.data() + read, n);
     read += n;
     if (progress) progress->advance_to(binary_points_header_size + read * 8);
   }
   if (!sized && in.peek() != std::char_traits<char>::eof())
-    throw Parse_error(name + ": bytes after the last point (the header announces " + std::to_string(count) +
-                      " points of dimension " + std::to_string(dimension) + ")");
+    throw Parse_error(name + ": bytes after the last point (the header announces " + announced + ")");
   if (progress) progress->finish();
   return t;
 }
 
 void write_binary_points(std::ostream& out, const Point_table& t, Progress* progress) {
-  unsigned char header[binary_points_header_size] = {};
-  std::memcpy(header, binary_points_magic, 4);
-  store_le(header + 4, binary_points_version, 4);
-  store_le(header + 8, static_cast<std::uint64_t>(t.dimension), 4);
-  store_le(header + 12, 0, 4);
-  store_le(header + 16, t.size(), 8);
-  out.write(reinterpret_cast<const char*>(header), binary_points_header_size);
+  detail::write_binary_header(out, binary_points_magic,
+                              {binary_points_version, static_cast<std::uint32_t>(t.dimension), 0, t.size()});
   const std::size_t values = t.size() * static_cast<std::size_t>(t.dimension);
   std::vector<double> buffer;
   for (std::size_t done = 0; done < values && out;) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
+#include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/input_file.hpp"
 #include "text_lines.hpp"
 
@@ -126,6 +127,8 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
 
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
   Input_file file(path);
+  if (file.prefix(4) == std::string_view(binary_simplices_magic, 4))
+    return read_binary_simplices(file.stream(), file.name(), dimension);
   const bool ele = path.size() > 4 && path.compare(path.size() - 4, 4, ".ele") == 0;
   return ele ? read_ele(file.stream(), file.name(), dimension, first_index)
              : read_simplices(file.stream(), file.name(), dimension);

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -60,10 +61,12 @@ void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_inde
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress) {
   progress = unless_terminal_output(path, progress);
-  const bool ele = has_extension(path, ".ele");
+  const bool ele = has_extension(path, ".ele"), binary = has_extension(path, ".dwsx");
   if (progress) progress->phase("writing " + shown(path), ele ? 0 : t.size());
   write_output_file(path, [&](std::ostream& out) {
-    ele ? write_ele(out, t, first_index) : write_plain(out, t, progress);
+    if (binary) write_binary_simplices(out, t, progress);
+    else if (ele) write_ele(out, t, first_index);
+    else write_plain(out, t, progress);
   });
   if (progress) progress->finish();
 }

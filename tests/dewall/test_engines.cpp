@@ -14,6 +14,7 @@
 #include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point_array.hpp"
 #include "support/cgal_reference.hpp"
+#include "support/kernel_archetype.hpp"
 
 namespace {
 
@@ -154,6 +155,23 @@ TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") 
   const std::vector<dewall::kernel::Point_d<3>> flat{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, 1, 0}}};
   CHECK_THROWS_AS(dewall::triangulate<3>(flat, Options{.engine = Engine::cgal}), dewall::Invalid_input);
   CHECK_THROWS_AS(dewall::triangulate<3>(flat), dewall::Invalid_input);
+}
+
+TEST_CASE("engines: DeWall over the kernel archetype (the concept and nothing else) gives CGAL's simplices",
+          "[engine][archetype]") {
+  // The archetype's points are opaque and it has only the five functors of
+  // DelaunayKernel: this compiles only while the algorithm needs nothing else.
+  // Without approximate_coordinates_are_exact every decision is the kernel's.
+  auto check = []<int D>(const std::vector<dewall::kernel::Point_d<D>>& points) {
+    using Archetype = dewall::test::Kernel_archetype<D>;
+    const auto wrapped = Archetype::points(points);
+    const auto t = dewall::triangulate<Archetype>(std::span<const typename Archetype::Point_d>(wrapped));
+    CHECK(t.statistics.engine == Engine::dewall);
+    CHECK(dewall::test::as_set<D>(t.simplices) == dewall::test::cgal_delaunay<D>(points));
+  };
+  check(generated<2>(dewall::io::Point_kind::uniform, 300, 4));
+  check(generated<3>(dewall::io::Point_kind::grid, 125, 4));  // cospherical: the perturbation, through the functors
+  check(generated<3>(dewall::io::Point_kind::bubbles, 400, 4));
 }
 
 TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {

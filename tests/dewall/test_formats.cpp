@@ -1,5 +1,5 @@
-// File formats: the binary .dwpt format (bit-exact round trip, clean errors on
-// truncated or foreign files), legacy VTK (written triangulations read back),
+// File formats: the binary .dwpt and .dwsx formats (bit-exact round trip,
+// clean errors on truncated or foreign files), legacy VTK (written triangulations read back),
 // text points, the progress line, and the commands generate / triangulate /
 // draw through the real executable (exit codes, messages, no partial files).
 #include <catch2/catch.hpp>
@@ -20,10 +20,12 @@
 
 #include "dewall/dewall.hpp"
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/progress.hpp"
+#include "dewall/io/simplex_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/io/vtk.hpp"
 #include "support/cli_runner.hpp"
@@ -106,6 +108,94 @@ TEST_CASE("binary points: truncated and foreign files are clean errors", "[forma
   auto zero = bytes.substr(0, 24);
   zero[16] = 0;
   CHECK_THROWS_WITH(read_binary_string(zero), Catch::Contains("no points"));
+}
+
+namespace {
+
+std::string binary_simplex_bytes(const Simplex_table& t) {
+  std::ostringstream out(std::ios::binary);
+  write_binary_simplices(out, t);
+  return out.str();
+}
+
+Simplex_list read_binary_simplex_string(const std::string& bytes, int dimension) {
+  std::istringstream in(bytes, std::ios::binary);
+  return read_binary_simplices(in, "t.dwsx", dimension);
+}
+
+/// A header in the documented layout, written by hand (not by the writer).
+std::string dwsx_header(std::uint32_t dimension, std::uint32_t width, std::uint64_t count) {
+  std::string h = "DWSX";
+  for (std::uint64_t v : {std::uint64_t{1}, std::uint64_t{dimension}, std::uint64_t{width}})
+    for (int i = 0; i < 4; ++i) h += static_cast<char>((v >> (8 * i)) & 0xff);
+  for (int i = 0; i < 8; ++i) h += static_cast<char>((count >> (8 * i)) & 0xff);
+  return h;
+}
+
+std::string le_bytes(std::uint64_t v, int width) {
+  std::string b;
+  for (int i = 0; i < width; ++i) b += static_cast<char>((v >> (8 * i)) & 0xff);
+  return b;
+}
+
+}  // namespace
+
+TEST_CASE("binary simplices: round trip, the documented layout, 8-byte and unknown-count files", "[formats]") {
+  const Simplex_table t{3, {0, 1, 2, 2, 1, 3, 4000000000u, 7, 0}};
+  const auto bytes = binary_simplex_bytes(t);
+  // The writer's bytes are the layout of docs/formats.md, byte for byte.
+  std::string expected = dwsx_header(2, 4, 3);
+  for (auto v : t.indices) expected += le_bytes(v, 4);
+  CHECK(bytes == expected);
+  const auto back = read_binary_simplex_string(bytes, 2);
+  CHECK(back.table.vertices_per_simplex == 3);
+  CHECK(back.table.indices == t.indices);
+  CHECK(back.format == "binary");
+  CHECK(back.lines.empty());
+  CHECK(back.where("t.dwsx", 1) == "t.dwsx");
+
+  // 8-byte indices, and a count the writer did not know (rows to the end).
+  std::string wide = dwsx_header(2, 8, 3), open = dwsx_header(2, 4, binary_simplices_unknown_count);
+  for (auto v : t.indices) wide += le_bytes(v, 8), open += le_bytes(v, 4);
+  CHECK(read_binary_simplex_string(wide, 2).table.indices == t.indices);
+  CHECK(read_binary_simplex_string(open, 2).table.indices == t.indices);
+  CHECK(read_binary_simplex_string(dwsx_header(2, 4, binary_simplices_unknown_count), 2).table.size() == 0);
+
+  // Larger than one read chunk (2^19 simplices), through a file, recognised by
+  // its magic bytes whatever its name.
+  Simplex_table big{4, {}};
+  for (std::uint32_t i = 0; i < 4 * 600000; ++i) big.indices.push_back(i * 2654435761u);
+  std::filesystem::create_directories("formats_test_binary");
+  write_simplices_file("formats_test_binary/s.dwsx", big, 0);
+  std::filesystem::rename("formats_test_binary/s.dwsx", "formats_test_binary/s.txt");
+  CHECK(read_simplices_file("formats_test_binary/s.txt", 3, 0).table.indices == big.indices);
+}
+
+TEST_CASE("binary simplices: truncated and foreign files are clean errors", "[formats]") {
+  const Simplex_table t{4, {0, 1, 2, 3, 1, 2, 3, 4}};
+  const auto bytes = binary_simplex_bytes(t);
+  for (std::size_t size = 0; size < bytes.size(); ++size) {
+    INFO("first " << size << " bytes");
+    CHECK_THROWS_AS(read_binary_simplex_string(bytes.substr(0, size), 3), Parse_error);
+  }
+  CHECK_THROWS_WITH(read_binary_simplex_string(bytes.substr(0, 30), 3), Catch::Contains("t.dwsx: truncated"));
+  CHECK_THROWS_WITH(read_binary_simplex_string(bytes + "x", 3), Catch::Contains("after the last simplex"));
+  CHECK_THROWS_WITH(read_binary_simplex_string(bytes, 2), Catch::Contains("simplices of dimension 3"));
+  CHECK_THROWS_WITH(read_binary_simplex_string(dwsx_header(3, 2, 0), 3), Catch::Contains("2 bytes per index"));
+  CHECK_THROWS_WITH(read_binary_simplex_string(dwsx_header(3, 4, std::uint64_t{1} << 60), 3),
+                    Catch::Contains("impossible simplex count"));
+  auto other = bytes;
+  other[4] = 2;
+  CHECK_THROWS_WITH(read_binary_simplex_string(other, 3), Catch::Contains("version 2"));
+  other = bytes;
+  other[3] = 'T';
+  CHECK_THROWS_WITH(read_binary_simplex_string(other, 3), Catch::Contains("not a binary simplex file"));
+  // An index that does not fit the 32 bits simplices are kept in.
+  std::string wide = dwsx_header(2, 8, 1) + le_bytes(0, 8) + le_bytes(1, 8) + le_bytes(std::uint64_t{1} << 32, 8);
+  CHECK_THROWS_WITH(read_binary_simplex_string(wide, 2), Catch::Contains("too large"));
+  // Unknown count: the file must end on a whole simplex.
+  std::string open = dwsx_header(2, 4, binary_simplices_unknown_count) + le_bytes(0, 4) + le_bytes(1, 4);
+  CHECK_THROWS_WITH(read_binary_simplex_string(open, 2), Catch::Contains("ends inside simplex 0"));
 }
 
 TEST_CASE("text points: shortest round-trip form reads back exactly", "[formats]") {
@@ -305,6 +395,24 @@ TEST_CASE("command line: triangulate with binary and VTK files", "[cli][formats]
     CHECK(r.status == 2);
     CHECK(r.err.find("cut.dwpt: truncated") != std::string::npos);
     CHECK(cli("triangulate -", "cat cut.dwpt | ").status == 2);
+  }
+  SECTION("binary simplices out: certified, the same simplices as the text list") {
+    CHECK(cli("triangulate b3.dwpt -o b3.dwsx").status == 0);
+    CHECK(slurp(cli.path("b3.dwsx")).substr(0, 4) == "DWSX");
+    CHECK(cli("triangulate b3.dwpt -o b3.txt").status == 0);
+    CHECK(read_simplices_file(cli.path("b3.dwsx"), 3, 0).table.indices ==
+          read_simplices_file(cli.path("b3.txt"), 3, 0).table.indices);
+    CHECK(cli("certify b3.dwpt b3.dwsx --canonical").status == 0);
+    CHECK(cli("certify b3.dwpt -", "cat b3.dwsx | ").status == 0);
+    // A corrupted index: certify names the simplex, exit 1; cut short: exit 2.
+    auto bytes = slurp(cli.path("b3.dwsx"));
+    bytes[24] = bytes[28];
+    std::ofstream(cli.path("bad.dwsx"), std::ios::binary) << bytes;
+    const auto bad = cli("certify b3.dwpt bad.dwsx");
+    CHECK(bad.status == 1);
+    CHECK(bad.out.find("simplex 0 (bad.dwsx)") != std::string::npos);
+    std::ofstream(cli.path("cut.dwsx"), std::ios::binary) << bytes.substr(0, 100);
+    CHECK(cli("certify b3.dwpt cut.dwsx").status == 2);
   }
   SECTION("--quiet and a non-terminal stderr print nothing") {
     CHECK(cli("triangulate b3.dwpt -o b3.txt --quiet").err.empty());

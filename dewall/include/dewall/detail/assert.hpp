@@ -1,6 +1,7 @@
 // Assertion tiers (STYLE.md): DEWALL_ASSERT is always on (cheap invariants);
-// DEWALL_DEBUG_ASSERT only without NDEBUG; DEWALL_EXPENSIVE_ASSERT (O(n) checks)
-// only when DEWALL_EXPENSIVE_CHECKS is defined (tests and fuzzing).
+// DEWALL_EXPENSIVE_ASSERT (O(n) checks: every search's answer against all
+// points, make_simplex.hpp) only when DEWALL_EXPENSIVE_CHECKS is defined, as the
+// fuzz harnesses define it (fuzz/CMakeLists.txt).
 #pragma once
 
 #include <cstdio>
@@ -15,11 +16,6 @@ namespace dewall::detail {
 
 #define DEWALL_ASSERT(expr) \
   ((expr) ? static_cast<void>(0) : ::dewall::detail::assertion_failed(#expr, __FILE__, __LINE__))
-#ifdef NDEBUG
-#define DEWALL_DEBUG_ASSERT(expr) static_cast<void>(0)
-#else
-#define DEWALL_DEBUG_ASSERT(expr) DEWALL_ASSERT(expr)
-#endif
 #ifdef DEWALL_EXPENSIVE_CHECKS
 #define DEWALL_EXPENSIVE_ASSERT(expr) DEWALL_ASSERT(expr)
 #else

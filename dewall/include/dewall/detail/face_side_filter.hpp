@@ -79,7 +79,6 @@ class Face_side_filter {
   /// The cofactors: orientation(f, q) ≈ Σ_j (q_j − f0_j)·C_j, so C is a normal
   /// pointing to the outer side (for ranking; not a proof).
   const std::array<double, D>& normal() const { return cofactor_; }
-  const Coords<D>& origin() const { return origin_; }
 
   /// Shrinks the box [lo, hi] to a box that still holds every point of it
   /// strictly on the outer side of f; false when no point of it can be there.

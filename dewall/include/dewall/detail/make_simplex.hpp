@@ -26,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "dewall/detail/assert.hpp"
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/pencil_rank.hpp"
 #include "dewall/detail/search_budget.hpp"
@@ -42,9 +43,6 @@ struct Search_stats {
   std::size_t searches = 0;
   std::size_t nodes_visited = 0;
   std::size_t candidates = 0;
-  std::size_t best_changes = 0;
-  std::size_t unbounded = 0;
-  std::size_t in_sphere_tests = 0;
 };
 
 template <class K>
@@ -97,7 +95,6 @@ class Simplex_search {
       if (*side != kernel::POSITIVE) return;
       if (best) {
         s[D] = *best;
-        ++stats_.in_sphere_tests;
         std::optional<bool> inside;
         if constexpr (kernel::approximate_coordinates_are_exact<K>)
           if (sphere_is_current) inside = ball.bounded ? sphere->inside_box(ps_.coords[q]) : sphere->inside(ps_.coords[q]);
@@ -105,7 +102,6 @@ class Simplex_search {
         if (!*inside) return;
       }
       best = q;
-      ++stats_.best_changes;
       sphere_is_current = false;
     };
     // Far searches (no outer point near the face: a hull face, or one whose
@@ -118,7 +114,6 @@ class Simplex_search {
     auto clip = [&] {
       if (clipped) return true;
       clipped = true;
-      ++stats_.unbounded;
       return side_filter.clip_to_outer_side(outer_lo, outer_hi);
     };
     auto may_hold_better = [&](const Node& n) {
@@ -174,6 +169,7 @@ class Simplex_search {
       from = tree.node(from).parent;
     }
     if (budget_) budget_->charge(stats_.candidates);
+    DEWALL_EXPENSIVE_ASSERT(brute_force_agrees(f, best));
     return best;
   }
 
@@ -217,6 +213,21 @@ class Simplex_search {
   const Search_stats& stats() const { return stats_; }
 
  private:
+  /// The answer of make_simplex(f) checked against every point with the exact
+  /// predicates alone (no tree, no filter): with an apex, no point inside its
+  /// sphere; without, no point on the outer side. O(n): fuzzing only
+  /// (DEWALL_EXPENSIVE_CHECKS).
+  bool brute_force_agrees(const Face<D>& f, const std::optional<Index>& apex) const {
+    Simplex<D> s;
+    std::copy(f.begin(), f.end(), s.begin());
+    if (apex) s[D] = *apex;
+    for (Index q = 0; q < static_cast<Index>(ps_.size()); ++q) {
+      if (is_vertex(f, q) || q == apex) continue;
+      if (apex ? ps_.inside_sphere(s, q) : ps_.orientation(f, q) == kernel::POSITIVE) return false;
+    }
+    return true;
+  }
+
   /// Depth first through the subtree at `top`, the child of smaller pencil key
   /// first while there is no `best`, skipping the nodes `may_hold_better` rules
   /// out (tested when a node is reached, so the ball found meanwhile applies).

@@ -56,11 +56,6 @@ struct Point_set {
     s[D] = points[q];
     return kernel.orientation_d_object()(s);
   }
-  kernel::Sign orientation(const Simplex<D>& s) const {
-    std::array<const Point*, D + 1> p;
-    for (int i = 0; i <= D; ++i) p[i] = points[s[i]];
-    return kernel.orientation_d_object()(p);
-  }
   /// Perturbed: is q inside the circumsphere of the positively oriented simplex s?
   bool inside_sphere(const Simplex<D>& s, Index q) const {
     std::array<const Point*, D + 2> p;

@@ -10,9 +10,12 @@
 // Below the top level an empty AFL ends the recursion: every simplex lying in
 // P1 shares a face with the wall or with another such simplex (the region they
 // cover is bounded by wall simplices and the hull), so none is missed. The
-// search for an apex uses the whole point set; the apex of a face of AFL_1 lies
-// in P1 anyway, since a simplex with vertices on both sides is a wall simplex
-// and was built with the wall.
+// search for an apex uses the whole point set, and the apex of a face of AFL_1
+// need not lie in P1: the simplex on the face's outer side may reach a point a
+// deeper wall put on the other side (fuzz finding 165dddcd). Nothing depends on
+// where the apex lies — Update closes each face once, whichever task sees it
+// — but a subproblem's faces can then outlive its points; recurse() splits the
+// points together with the faces' vertices in that case.
 //
 // Output order is the depth-first order (wall, then P1's part, then P2's)
 // whatever the number of threads: parallel subproblems write to their own
@@ -324,9 +327,6 @@ class Wall_builder {
     search_stats_.searches += s.searches;
     search_stats_.nodes_visited += s.nodes_visited;
     search_stats_.candidates += s.candidates;
-    search_stats_.best_changes += s.best_changes;
-    search_stats_.in_sphere_tests += s.in_sphere_tests;
-    search_stats_.unbounded += s.unbounded;
     stats_.simplices += w.simplices;
     stats_.first_wall_simplices += w.first_wall_simplices;
     stats_.max_depth = std::max(stats_.max_depth, w.max_depth);

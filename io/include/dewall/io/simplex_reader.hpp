@@ -1,4 +1,5 @@
-// Reading simplex lists: the plain list, TetGen .ele and Qhull's `qdelaunay i`.
+// Reading simplex lists: the plain list, TetGen .ele, Qhull's `qdelaunay i` and
+// the binary format (binary_simplices.hpp, recognised by its magic bytes).
 //
 // Plain list: one simplex per line, its D + 1 zero-based point indices
 // separated by whitespace, any vertex order, any line order; `#` starts a
@@ -25,8 +26,13 @@ namespace dewall::io {
 /// file each row came from, for messages.
 struct Simplex_list {
   Simplex_table table;
-  std::vector<std::size_t> lines;  // lines[r]: the 1-based line of row r
-  std::string format;              // "plain", "qhull" or "tetgen"
+  std::vector<std::size_t> lines;  // lines[r]: the 1-based line of row r; empty for binary
+  std::string format;              // "plain", "qhull", "tetgen" or "binary"
+
+  /// Where row r is, for messages: "NAME:LINE", or "NAME" for a binary file.
+  std::string where(const std::string& name, std::size_t r) const {
+    return lines.empty() ? name : name + ":" + std::to_string(lines[r]);
+  }
 };
 
 /// Reads the plain list or Qhull's output (recognised by its lone count line)
@@ -41,7 +47,8 @@ Simplex_list read_simplices(std::istream& in, const std::string& name, int dimen
 /// \throws Parse_error as read_simplices, and on a vertex number below first_index.
 Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, std::size_t first_index);
 
-/// Reads a file by path ("-" = standard input); ".ele" selects TetGen's format.
+/// Reads a file by path ("-" = standard input); the magic bytes 'DWSX' select
+/// the binary format, the extension ".ele" TetGen's.
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index);
 
 }  // namespace dewall::io

@@ -1,6 +1,6 @@
 // Writing files: simplices as the plain list (one simplex per line, zero-based
-// input indices separated by single spaces), TetGen .ele or legacy VTK (chosen
-// by extension), and point sets as plain text, binary (.dwpt) or VTK. Every file
+// input indices separated by single spaces), TetGen .ele, binary (.dwsx,
+// binary_simplices.hpp) or legacy VTK (chosen by extension), and point sets as plain text, binary (.dwpt) or VTK. Every file
 // goes through io::Output_file (output_file.hpp): a regular file is written to
 // an exclusive temporary and renamed when complete; devices, FIFOs and
 // standard output are written directly.
@@ -33,7 +33,8 @@ void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress =
 /// vertex numbers shifted by `first_index` (the numbering of the .node file).
 void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_index);
 
-/// Writes to `path` ("-" = standard output) through io::Output_file.
+/// Writes to `path` ("-" = standard output) through io::Output_file: the
+/// binary format for ".dwsx", TetGen's for ".ele", the plain list otherwise.
 /// \throws Write_error when the file cannot be written.
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress = nullptr);

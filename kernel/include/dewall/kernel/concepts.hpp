@@ -3,7 +3,8 @@
 // Modelled on CGAL's DelaunayTriangulationTraits: each requirement is a functor
 // reached through an `xxx_object()` accessor, so a CGAL kernel fits behind a thin
 // adapter (cgal_kernel_adapter.hpp). Models: Filtered_kernel_d<D> (ours) and
-// Cgal_kernel_adapter<CGAL kernel, D>. The archetype in tests/support proves the
+// Cgal_kernel_adapter<CGAL kernel, D>. Kernel_archetype<D> (tests/support/
+// kernel_archetype.hpp: opaque points, these functors only) proves the
 // algorithm uses nothing else.
 //
 // Requirements, for a kernel K with Point = K::Point_d and D = K::dimension:

@@ -61,8 +61,9 @@ template <int Begin, int End, class F>
 }  // namespace detail
 
 /// The determinant of `a`, computed by the shared-minor Laplace expansion above.
-/// Same operations in the same order as before, but every loop is unrolled at
-/// compile time, so masks, signs and indices are constants.
+/// The same operations in the same order as the loop form of the expansion, but
+/// every loop is unrolled at compile time, so masks, signs and indices are
+/// constants.
 template <class T, int K>
 [[gnu::always_inline]] inline T determinant(const Matrix<T, K>& a) {
   static_assert(K >= 1 && K <= 8);

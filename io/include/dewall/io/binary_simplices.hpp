@@ -1,0 +1,47 @@
+// The binary simplex format ("DWSX", extension .dwsx): the triangulation of
+// 10^7 points and more without formatting or parsing a number. The same
+// 24-byte header layout as the binary points (binary_points.hpp):
+//
+//   offset  size  field
+//        0     4  magic: the bytes 'D' 'W' 'S' 'X'
+//        4     4  version: 1 (unsigned, little-endian)
+//        8     4  dimension D: 2 … 6 (a simplex has D + 1 vertices)
+//       12     4  bytes per index: 4 or 8
+//       16     8  count: number of simplices; 2^64 − 1 when the writer could
+//                 not know it (a stream to a pipe): the simplices then run to
+//                 the end of the input
+//       24     w·(D+1)·count  the indices, unsigned little-endian, simplex
+//                 after simplex, zero-based, each simplex positively oriented
+//
+// With a known count the file is exactly 24 + w·(D+1)·count bytes; anything
+// else is an error. docs/formats.md has the description and a NumPy reader.
+#pragma once
+
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+
+#include "dewall/io/simplex_reader.hpp"
+
+namespace dewall::io {
+
+class Progress;
+
+inline constexpr char binary_simplices_magic[4] = {'D', 'W', 'S', 'X'};
+inline constexpr std::uint32_t binary_simplices_version = 1;
+/// The count of a file whose writer did not know it.
+inline constexpr std::uint64_t binary_simplices_unknown_count = ~std::uint64_t{0};
+
+/// Writes `t` (simplices of dimension t.vertices_per_simplex − 1) with 4-byte
+/// indices; `progress`, when given, receives the simplices written. The caller
+/// checks the stream state.
+void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress = nullptr);
+
+/// Reads a binary simplex file from `in` (opened in binary mode), magic
+/// included; the rows get no line numbers (Simplex_list::lines stays empty).
+/// \throws Parse_error on a wrong magic, version or index width, a dimension
+/// other than `dimension` (the points'), an index of 2^32 or more, a truncated
+/// file or bytes after the last simplex.
+Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension);
+
+}  // namespace dewall::io
