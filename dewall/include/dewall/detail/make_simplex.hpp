@@ -214,16 +214,19 @@ class Simplex_search {
 
  private:
   /// The answer of make_simplex(f) checked against every point with the exact
-  /// predicates alone (no tree, no filter): with an apex, no point inside its
-  /// sphere; without, no point on the outer side. O(n): fuzzing only
+  /// predicates alone (no tree, no filter): no point on the outer side of f
+  /// inside the apex's sphere, or none on the outer side at all without an
+  /// apex. (Points on the inner side may lie inside: the first simplex searches
+  /// from faces that are not Delaunay.) O(n): fuzzing only
   /// (DEWALL_EXPENSIVE_CHECKS).
   bool brute_force_agrees(const Face<D>& f, const std::optional<Index>& apex) const {
     Simplex<D> s;
     std::copy(f.begin(), f.end(), s.begin());
     if (apex) s[D] = *apex;
+    if (apex && ps_.orientation(f, *apex) != kernel::POSITIVE) return false;
     for (Index q = 0; q < static_cast<Index>(ps_.size()); ++q) {
-      if (is_vertex(f, q) || q == apex) continue;
-      if (apex ? ps_.inside_sphere(s, q) : ps_.orientation(f, q) == kernel::POSITIVE) return false;
+      if (is_vertex(f, q) || q == apex || ps_.orientation(f, q) != kernel::POSITIVE) continue;
+      if (!apex || ps_.inside_sphere(s, q)) return false;
     }
     return true;
   }
