@@ -72,7 +72,7 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"
     "      legacy VTK for ParaView when it ends in .vtk (2D and 3D).\n"
     "      --engine: the construction; the simplices are the same with each.\n"
-    "      hybrid builds DeWall's walls down to regions of n/8 points and\n"
+    "      hybrid builds DeWall's walls down to regions of n/4 points and\n"
     "      triangulates each region with CGAL's incremental construction (no\n"
     "      merge step; the regions run in parallel). auto (default) is hybrid,\n"
     "      handing over to CGAL alone when the walls' searches prove too costly\n"
