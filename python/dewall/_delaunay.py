@@ -16,9 +16,11 @@ class Delaunay:
     points: array of shape (n, d). A C-contiguous float64 array is used in
         place, not copied (so do not change it while this object is in use);
         other real arrays are converted exactly (dewall._arrays).
-    engine: "auto" (DeWall, handing over to CGAL's incremental construction
-        when DeWall's searches prove too costly, e.g. points on one sphere),
-        "dewall" or "cgal". The simplices are the same with each.
+    engine: "auto" (in 2D and 3D the hybrid, handing over to CGAL's
+        incremental construction when DeWall's searches prove too costly, e.g.
+        points on one sphere; in 4D and up CGAL's), "hybrid" (DeWall's walls
+        down to regions of n/4 points, each triangulated by CGAL), "dewall"
+        (walls all the way down) or "cgal". The simplices are the same with each.
     threads: the most threads to use (None: all cores). The result does not
         depend on it.
 
@@ -88,7 +90,7 @@ class Delaunay:
 
     @property
     def statistics(self):
-        """Counters of the run: the engine that built the simplices ("dewall" or "cgal"),
+        """Counters of the run: the engine that built the simplices ("dewall", "hybrid" or "cgal"),
         distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`)."""
         return self._triangulation.statistics
 

@@ -247,11 +247,12 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
 
 TEMPLATE_TEST_CASE_SIG("far from 1: scaling the input by 2^±600 changes nothing, not even the work done", "[dewall][scale]",
                        ((int D), D), 2, 3, 4) {
-  // DeWall's own double arithmetic (grid, rings, ball boxes, filters) runs on
+  // DeWall's own double arithmetic (kd-tree boxes, ball boxes, filters) runs on
   // coordinates scaled exactly to near 1, and the kernel's filter scales too:
   // the same simplices, and the same counters, as the unscaled input. Before,
-  // a 4D lattice scaled by 2^600 collapsed the grid to one cell and every
-  // predicate went to the exact stage (minutes instead of milliseconds).
+  // a 4D lattice scaled by 2^600 collapsed the search structure (then a uniform
+  // grid) to one cell and every predicate went to the exact stage (minutes
+  // instead of milliseconds).
   std::mt19937_64 rng(20261122);
   for (const auto& base : {dewall::test::lattice<D>(D == 4 ? 300 : 500), dewall::test::uniform<D>(400, rng)}) {
     const auto reference = dewall::triangulate<D>(base, dewall::Options{.engine = dewall::Engine::dewall});

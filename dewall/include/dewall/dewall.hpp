@@ -53,7 +53,8 @@ using Simplex = std::array<std::uint32_t, D + 1>;
 namespace detail {
 
 /// The triangulation with the project's kernel, compiled into dewall::dewall
-/// (dewall/src/triangulate_filtered.cpp) for D = 2 … 6; as triangulate_generic.
+/// (dewall/src/triangulate_filtered.hpp, instantiated by triangulate_filtered_<D>.cpp
+/// for D = 2 … 6); as triangulate_generic.
 template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
                                 std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels);
@@ -103,7 +104,8 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
 
 /// The Delaunay triangulation of `points`, handed to `sink(simplex)` once for
 /// each simplex (a dewall::Simplex<D> of input indices, positively oriented), in
-/// DeWall's depth-first order (the same for any number of threads). The
+/// DeWall's depth-first order, then the hybrid's gift-wrapped closing
+/// simplices (the same for any number of threads). The
 /// simplices are handed over once the triangulation is complete; true streaming
 /// (memory near the size of the walls) is future work. A sink callable as
 /// sink(simplex, level) also receives the recursion level of the wall that

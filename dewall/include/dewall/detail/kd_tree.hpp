@@ -37,7 +37,8 @@ template <int D>
 class Kd_tree {
  public:
   struct Node {
-    Coords<D> lo, hi;    // the bounding box of the node's points (their exact coordinates)
+    Coords<D> lo, hi;    // the bounding box of the node's points (Point_set's coordinates: scaled by
+                         // a power of two, exact when the kernel's points are doubles)
     Index begin, end;    // the node's points: positions [begin, end) in tree order
     Index first_child;   // the children are first_child and first_child + 1; 0 for a leaf
     Index parent;        // the root is its own parent

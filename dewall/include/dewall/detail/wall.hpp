@@ -17,7 +17,8 @@
 // — but a subproblem's faces can then outlive its points; recurse() splits the
 // points together with the faces' vertices in that case.
 //
-// Output order is the depth-first order (wall, then P1's part, then P2's)
+// Output order is the depth-first order (wall, then P1's part, then P2's),
+// then the simplices finish() gift-wraps from the faces regions left open,
 // whatever the number of threads: parallel subproblems write to their own
 // blocks of output, appended in that order.
 #pragma once
