@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "dewall/cgal/cgal_delaunay.hpp"
+#include "support/cgal_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point_array.hpp"

@@ -8,7 +8,7 @@
 //
 // Steps:
 //  1. generate the points with dewall's generator (io/point_generators.hpp);
-//  2. untimed: CGAL's triangulation as the reference (dewall/cgal/cgal_delaunay.hpp)
+//  2. untimed: CGAL's triangulation as the reference (tests/support/cgal_delaunay.hpp)
 //     and, on it, the "floor" of issue 10: the mean number of points within one
 //     spacing h of the circumsphere of a sample of its cells (below);
 //  3. timed, best of R: CGAL (Delaunay_triangulation_2/_3 with Epick, dD
@@ -55,7 +55,7 @@
 #include <unistd.h>
 #include <vector>
 
-#include "dewall/cgal/cgal_delaunay.hpp"
+#include "support/cgal_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point_array.hpp"

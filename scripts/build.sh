@@ -1,5 +1,8 @@
 #!/usr/bin/env bash
-# Configures (once) and builds the project into build/ (Release, ccache when present).
+# scripts/build.sh [TARGET...]: configures (once) and builds the project into
+# build/ (Release, ccache when present): the given targets, or everything.
+# ./run builds only the command-line tool (most of a fresh build is tests and
+# benchmarks); ./test builds everything.
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
 build="$here/build"
@@ -9,4 +12,6 @@ if [ ! -f "$build/CMakeCache.txt" ]; then
   cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" >/dev/null
 fi
 
-cmake --build "$build" -j "$(nproc)"
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
+cmake --build "$build" -j "$(nproc)" "${targets[@]}"

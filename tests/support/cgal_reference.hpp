@@ -1,8 +1,8 @@
 // The CGAL reference of the tests: CGAL's own triangulation as sorted index
-// tuples (dewall/cgal/cgal_delaunay.hpp).
+// tuples (cgal_delaunay.hpp), with the tests' names.
 #pragma once
 
-#include "dewall/cgal/cgal_delaunay.hpp"
+#include "support/cgal_delaunay.hpp"
 
 namespace dewall::test {
 

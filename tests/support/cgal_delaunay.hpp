@@ -1,7 +1,8 @@
 // CGAL's own Delaunay triangulation of a point set (CGAL's insertion with
 // Epick / Epick_d, not DeWall), as a set of sorted index tuples: the reference
-// the tests, the triangulate fuzzer and bench_dewall compare DeWall with (the
-// library's own incremental engine is dewall/src/cgal_engine.cpp). Duplicate points map to their first occurrence, the
+// the tests, the triangulate fuzzer and the benchmarks compare dewall with. Not
+// part of the installed API (the library's own incremental engine is
+// dewall/src/cgal_engine.cpp). Duplicate points map to their first occurrence, the
 // convention dewall follows (CGAL keeps whichever copy it inserted first,
 // which after its spatial sort need not be the first).
 #pragma once
