@@ -26,7 +26,9 @@
 //     triangulation; no simplex repeats; every simplex is positively oriented
 //     and uses first occurrences of duplicate points only;
 //  3. empty spheres, by brute force: no distinct input point lies inside any
-//     simplex's circumsphere under the kernel's perturbed predicate;
+//     simplex's circumsphere under the kernel's perturbed predicate
+//     (tests/support/brute_force_delaunay.hpp); and the certifier finds the
+//     triangulation Delaunay and canonical;
 //  4. the output is a function of the point set and not of the threads: the
 //     serial run (parallel_depth = 0) gives the same list in the same order, and
 //     the reversed input gives the same simplices (mapped through coordinates);
@@ -42,10 +44,11 @@
 #include <utility>
 #include <vector>
 
+#include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
-#include "dewall/kernel/side_of_sphere.hpp"
 #include "fuzz_common.hpp"
+#include "support/brute_force_delaunay.hpp"
 #include "support/cgal_reference.hpp"
 
 #include <CGAL/Delaunay_triangulation.h>
@@ -178,16 +181,11 @@ void run(Byte_source& in) {
     CHECK_ON(checker, orientation_d<D>(o) == POSITIVE);
   }
 
-  // Property 3: empty spheres, every simplex against every distinct point.
-  for (const auto& s : t.simplices) {
-    Sphere_points<D> refs;
-    for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &points[s[i]];
-    for (const auto& [coords, index] : first) {
-      if (std::find(s.begin(), s.end(), index) != s.end()) continue;
-      refs[D + 1] = &points[index];
-      CHECK_ON(checker, side_of_oriented_sphere_d_sos<D>(refs) == ON_NEGATIVE_SIDE);
-    }
-  }
+  // Property 3: empty spheres, every simplex against every distinct point, by
+  // brute force (independent of the certifier); and the certifier's verdict.
+  CHECK_ON(checker, !dewall::test::brute_force_violation<D>(points, t.simplices));
+  const auto report = dewall::certify::certify<dewall::kernel::Filtered_kernel_d<D>>(points, t.simplices);
+  CHECK_ON(checker, report.delaunay && report.canonical);
 
   // Property 4: threads and input order change nothing.
   const auto serial = dewall::triangulate<D>(points, dewall::Options{.parallel_depth = 0, .engine = dewall::Engine::dewall});

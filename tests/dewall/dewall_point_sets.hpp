@@ -7,7 +7,9 @@
 #include <random>
 #include <vector>
 
+#include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point.hpp"
+#include "dewall/kernel/point_array.hpp"
 
 namespace dewall::test {
 
@@ -20,21 +22,12 @@ std::vector<kernel::Point_d<D>> uniform(std::size_t n, std::mt19937_64& rng) {
   return p;
 }
 
-/// The integer lattice {0 … k−1}^D with k^D ≈ n (every point ties with many).
+/// The integer lattice {0 … k−1}^D with k^D ≈ n (every point ties with many):
+/// the library's `grid` generator (`dewall generate grid N`), first coordinate
+/// fastest.
 template <int D>
 std::vector<kernel::Point_d<D>> lattice(std::size_t n) {
-  const int k = std::max(2, static_cast<int>(std::round(std::pow(static_cast<double>(n), 1.0 / D))));
-  std::vector<kernel::Point_d<D>> p;
-  std::array<int, D> c{};
-  for (;;) {
-    kernel::Point_d<D> q;
-    for (int j = 0; j < D; ++j) q[j] = c[j];
-    p.push_back(q);
-    int j = 0;
-    while (j < D && ++c[j] == k) c[j++] = 0;
-    if (j == D) break;
-  }
-  return p;
+  return kernel::points_from_coordinates<D>(io::generate_points(io::Point_kind::grid, n, D, 0).coordinates);
 }
 
 /// n random points of the lattice {0 … k−1}^D: duplicates and ties, random order.

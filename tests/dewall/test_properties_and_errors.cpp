@@ -1,5 +1,5 @@
-// The empty-sphere property checked directly with the exact perturbed
-// predicate, the facet structure, and bad input through the library and the CLI.
+// The empty-sphere property checked by brute force with the exact perturbed
+// predicate and by the certifier, and bad input through the library and the CLI.
 #include <catch2/catch.hpp>
 
 #include <cstdio>
@@ -12,8 +12,10 @@
 #include <sstream>
 #include <string>
 
+#include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall_point_sets.hpp"
+#include "support/brute_force_delaunay.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/cli_runner.hpp"
 
@@ -22,43 +24,21 @@ using dewall::kernel::Point_d;
 
 namespace {
 
-/// Every simplex positively oriented with an empty perturbed sphere (brute
-/// force over all points), every facet shared by at most two simplices, and
-/// every point a vertex unless it duplicates an earlier one.
+/// Every simplex positively oriented with an empty perturbed sphere (by brute
+/// force over all points, independent of the certifier), and the certifier's
+/// verdict: a triangulation of the hull, the canonical one, every distinct
+/// point a vertex.
 template <int D>
 void check_delaunay_properties(const std::vector<Point_d<D>>& points) {
   const auto t = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::dewall});
   REQUIRE(!t.simplices.empty());
-  std::map<std::array<std::uint32_t, D>, int> facet_count;
-  std::vector<bool> used(points.size(), false);
-  for (const auto& s : t.simplices) {
-    std::array<const Point_d<D>*, D + 1> p;
-    for (int i = 0; i <= D; ++i) p[i] = &points[s[i]], used[s[i]] = true;
-    REQUIRE(kernel::orientation_d<D>(p) == kernel::POSITIVE);
-    for (std::size_t q = 0; q < points.size(); ++q) {
-      if (std::find(s.begin(), s.end(), q) != s.end()) continue;
-      std::array<const Point_d<D>*, D + 2> ps;
-      std::copy(p.begin(), p.end(), ps.begin());
-      ps[D + 1] = &points[q];
-      if (kernel::compare_lexicographically(points[q], *p[0]) == kernel::EQUAL) continue;  // duplicate
-      bool duplicate = false;
-      for (int i = 0; i <= D; ++i) duplicate |= points[q] == *p[i];
-      if (duplicate) continue;
-      INFO("point " << q << " inside the sphere of a simplex");
-      REQUIRE(kernel::side_of_oriented_sphere_d_sos<D>(ps) == kernel::ON_NEGATIVE_SIDE);
-    }
-    for (int i = 0; i <= D; ++i) {
-      std::array<std::uint32_t, D> f;
-      for (int j = 0, k = 0; j <= D; ++j)
-        if (j != i) f[k++] = s[j];
-      std::sort(f.begin(), f.end());
-      ++facet_count[f];
-    }
-  }
-  for (const auto& [f, count] : facet_count) REQUIRE(count <= 2);
-  std::map<std::array<double, D>, std::size_t> first;
-  for (std::size_t i = points.size(); i-- > 0;) first[points[i].x] = i;
-  for (std::size_t i = 0; i < points.size(); ++i) REQUIRE(used[i] == (first[points[i].x] == i));
+  const auto violation = test::brute_force_violation<D>(points, t.simplices);
+  INFO("simplex " << (violation ? violation->first : 0) << ", point " << (violation ? violation->second : 0));
+  CHECK(!violation);
+  const auto report = certify::certify<kernel::Filtered_kernel_d<D>>(points, t.simplices);
+  CHECK(report.delaunay);
+  CHECK(report.canonical);
+  CHECK(report.distinct_points == test::first_occurrences_by_brute_force<D>(points).size());
 }
 
 }  // namespace
