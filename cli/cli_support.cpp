@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <chrono>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -11,6 +12,7 @@
 #include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/quote.hpp"
+#include "dewall/kernel/predicate_stats.hpp"
 
 namespace dewall::cli {
 namespace {
@@ -59,6 +61,22 @@ void print_stats(std::FILE* out, const Run& run) {
                s.tree_leaves, s.mean_nodes_per_simplex(),
                s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0,
                engine_name(s.engine), s.region_simplices, s.searches_before_handover, run.seconds);
+  // The kernel's per-stage counters, in a build configured with
+  // -DDEWALL_PREDICATE_STATS=ON (they cost a few per cent, so releases leave
+  // them out): which stage decided each evaluation so far in this process.
+  if constexpr (kernel::predicate_stats_enabled) {
+    const auto& all = kernel::predicate_stats();
+    for (int d = 2; d <= 6; ++d) {
+      const std::pair<const char*, const kernel::Predicate_stats*> kinds[] = {
+          {"orientation", &all.orientation[static_cast<std::size_t>(d)]},
+          {"side_of_sphere", &all.side_of_sphere[static_cast<std::size_t>(d)]}};
+      for (const auto& [name, p] : kinds)
+        if (p->calls())
+          std::fprintf(out, "predicate=%s dimension=%d filter=%llu interval=%llu exact=%llu perturbed=%llu\n", name, d,
+                       static_cast<unsigned long long>(p->filter), static_cast<unsigned long long>(p->interval),
+                       static_cast<unsigned long long>(p->exact), static_cast<unsigned long long>(p->perturbed));
+    }
+  }
 }
 
 namespace {

@@ -65,24 +65,11 @@ inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
 /// does not apply (see make_delaunay_triangulation_2) and dt is untouched.
 template <class DT, class Item>
 bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
-  using Point = typename DT::Point;
-  using Traits = Item_traits<Item, Point>;
   if constexpr (is_hierarchy_2<DT>) {
     return false;
   } else {
-    const auto coords = to_dewall_points<2, std::vector<Item>, Traits>(
-        items, [](const Point& p, int j) { return j == 0 ? p.x() : p.y(); });
-    if (!coords) return false;
-    const auto simplices = dewall_simplices<2>(*coords, options);
-    if (!simplices) return false;
-
-    auto& tds = dt.tds();
-    tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
-    Tds2_access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
-    dt.set_infinite_vertex(access.infinite);
-    tds.set_dimension(2);
-    assemble<2>(*simplices, items.size(), access);
-    return true;
+    return build_with_dewall<2, Tds2_access>(dt, items, options,
+                                          [](const typename DT::Point& p, int j) { return j == 0 ? p.x() : p.y(); });
   }
 }
 

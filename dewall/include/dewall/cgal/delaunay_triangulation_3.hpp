@@ -70,24 +70,11 @@ inline constexpr bool is_fast_location_3 = std::is_same_v<typename DT::Location_
 /// does not apply (see make_delaunay_triangulation_3) and dt is untouched.
 template <class DT, class Item>
 bool build_with_dewall_3(DT& dt, const std::vector<Item>& items, const Options& options) {
-  using Point = typename DT::Point;
-  using Traits = Item_traits<Item, Point>;
   if constexpr (is_fast_location_3<DT>) {
     return false;
   } else {
-    const auto coords = to_dewall_points<3, std::vector<Item>, Traits>(
-        items, [](const Point& p, int j) { return j == 0 ? p.x() : j == 1 ? p.y() : p.z(); });
-    if (!coords) return false;
-    const auto simplices = dewall_simplices<3>(*coords, options);
-    if (!simplices) return false;
-
-    auto& tds = dt.tds();
-    tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
-    Tds3_access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
-    dt.set_infinite_vertex(access.infinite);
-    tds.set_dimension(3);
-    assemble<3>(*simplices, items.size(), access);
-    return true;
+    return build_with_dewall<3, Tds3_access>(dt, items, options,
+                                          [](const typename DT::Point& p, int j) { return j == 0 ? p.x() : j == 1 ? p.y() : p.z(); });
   }
 }
 

@@ -175,4 +175,26 @@ void assemble(const std::vector<Simplex<D>>& simplices, std::size_t input_size, 
   DEWALL_ASSERT(hull_ridges.size() == 0);
 }
 
+/// Builds dt (freshly constructed) from items with DeWall, assembled in its
+/// data structure through Access<DT, Item, Traits> (Tds2_access, Tds3_access);
+/// false when DeWall does not apply (a coordinate not exactly a double, or
+/// points not spanning E^D) and dt is untouched. `coordinate(p, j)`: the j-th
+/// coordinate of a DT::Point. The 2D and 3D builders differ only in these.
+template <int D, template <class, class, class> class Access, class DT, class Item, class Coordinate>
+bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options, Coordinate&& coordinate) {
+  using Traits = Item_traits<Item, typename DT::Point>;
+  const auto coords = to_dewall_points<D, std::vector<Item>, Traits>(items, coordinate);
+  if (!coords) return false;
+  const auto simplices = dewall_simplices<D>(*coords, options);
+  if (!simplices) return false;
+
+  auto& tds = dt.tds();
+  tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
+  Access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
+  dt.set_infinite_vertex(access.infinite);
+  tds.set_dimension(D);
+  assemble<D>(*simplices, items.size(), access);
+  return true;
+}
+
 }  // namespace dewall::cgal::detail
