@@ -175,8 +175,9 @@ class Triangulation {
       std::vector<std::uint32_t> first;
       {
         py::gil_scoped_release release;  // comparisons are on the bits: no floating-point environment needed
-        first = dewall::kernel::first_occurrences(as_points<d()>(points_),
-                                                  Kernel<d()>{}.compare_lexicographically_d_object());
+        const Kernel<d()> k;
+        first = dewall::kernel::first_occurrences(as_points<d()>(points_), k.compare_lexicographically_d_object(),
+                                                  k.approximate_coordinates_object());
       }
       const auto n = static_cast<py::ssize_t>(first.size());
       return adopt<std::int32_t>(std::move(first), {n});

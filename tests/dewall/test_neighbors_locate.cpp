@@ -117,9 +117,32 @@ TEST_CASE("neighbors refuses a facet of three simplices", "[python]") {
 
 TEST_CASE("first_occurrences: each point maps to the earliest equal point, -0 == +0", "[python]") {
   const std::vector<Point_d<2>> p = {{{1, 2}}, {{0, 0}}, {{1, 2}}, {{-0.0, 0}}, {{3, 3}}, {{1, 2}}};
-  const auto first = kernel::first_occurrences(std::span<const Point_d<2>>(p),
-                                               kernel::Filtered_kernel_d<2>{}.compare_lexicographically_d_object());
+  const kernel::Filtered_kernel_d<2> k;
+  const auto first = kernel::first_occurrences(std::span<const Point_d<2>>(p), k.compare_lexicographically_d_object(),
+                                               k.approximate_coordinates_object());
   CHECK(first == std::vector<std::uint32_t>{0, 1, 0, 1, 4, 0});
+}
+
+TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates", "[python]") {
+  // Coordinates from a small set (0, ±0, 1, 2^-1074, a NaN-free mix), so most
+  // points repeat an earlier one and the hash table's probe chains are long.
+  const double values[] = {0.0, -0.0, 1.0, 0x1p-1074, -1.0, 3.5};
+  std::mt19937_64 rng(5);
+  for (std::size_t n : {1u, 2u, 50u, 3000u}) {
+    std::vector<Point_d<3>> p(n);
+    for (auto& q : p)
+      for (double& c : q.x) c = values[rng() % 6];
+    const kernel::Filtered_kernel_d<3> k;
+    const auto first = kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
+                                                 k.approximate_coordinates_object());
+    std::vector<std::uint32_t> expected(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t j = 0;
+      while (!(p[j].x[0] == p[i].x[0] && p[j].x[1] == p[i].x[1] && p[j].x[2] == p[i].x[2])) ++j;
+      expected[i] = static_cast<std::uint32_t>(j);
+    }
+    CHECK(first == expected);
+  }
 }
 
 TEST_CASE("parse_engine names the engines the CLI and Python accept", "[python]") {

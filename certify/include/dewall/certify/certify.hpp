@@ -167,7 +167,7 @@ class Certifier {
       }
     }
     first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(),
-                                       [&](std::size_t i) { return bool(bad_point_[i]); });
+                                       k_.approximate_coordinates_object(), [&](std::size_t i) { return bool(bad_point_[i]); });
     for (std::size_t i = 0; i < n; ++i)
       if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }

@@ -39,7 +39,7 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
       if (!kernel::is_finite(x[j]))
         throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
   }
-  const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object());
+  const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object(), coords);
   std::vector<std::size_t> kept;
   for (std::size_t i = 0; i < first.size(); ++i)
     if (first[i] == i) kept.push_back(i);

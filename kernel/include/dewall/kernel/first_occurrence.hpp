@@ -4,10 +4,9 @@
 // for point i, the earliest point with the same coordinates.
 #pragma once
 
-#include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
-#include <numeric>
 #include <span>
 #include <vector>
 
@@ -18,30 +17,55 @@ namespace dewall::kernel {
 /// For each point i, the smallest index j with the same coordinates as point i
 /// (i itself when no earlier point equals it), equality decided by `compare`, a
 /// kernel's exact lexicographic order (Compare_lexicographically_d: −0 and +0
-/// alike). A point for which `excluded(i)` is true (a non-finite one, say) is
-/// compared with nothing and maps to itself.
+/// alike). `coordinates(p)`: the point's approximate coordinates (a kernel's
+/// Approximate_coordinates_d), equal for equal points; they only place points
+/// in a hash table, `compare` decides. A point for which `excluded(i)` is true
+/// (a non-finite one, say) is compared with nothing and maps to itself.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
-/// Complexity: O(n log n) comparisons.
-template <class Point, class Compare, class Excluded>
-std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Excluded excluded) {
-  std::vector<std::uint32_t> first(points.size());
-  std::iota(first.begin(), first.end(), std::uint32_t{0});
-  std::vector<std::uint32_t> order;
-  order.reserve(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!excluded(i)) order.push_back(static_cast<std::uint32_t>(i));
-  // Stable: within a run of equal points the earliest input index comes first.
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::uint32_t a, std::uint32_t b) { return compare(points[a], points[b]) == SMALLER; });
-  for (std::size_t i = 1; i < order.size(); ++i)
-    if (compare(points[order[i - 1]], points[order[i]]) == EQUAL) first[order[i]] = first[order[i - 1]];
+/// Complexity: O(n) expected comparisons, one table of 2n–4n slots. (It was a
+/// stable sort of indices: a tenth of CGAL's whole 2D triangulation time.)
+template <class Point, class Compare, class Coordinates, class Excluded>
+std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Coordinates coordinates,
+                                             Excluded excluded) {
+  const std::size_t n = points.size();
+  std::vector<std::uint32_t> first(n);
+  // Open addressing with linear probing; a slot holds 1 + the index of the
+  // first occurrence of its point, 0 when empty. Points are entered in input
+  // order, so the first equal point a probe meets is the earliest.
+  const std::size_t slots = std::bit_ceil(2 * n + 2), mask = slots - 1;
+  std::vector<std::uint32_t> table(slots, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    first[i] = static_cast<std::uint32_t>(i);
+    if (excluded(i)) continue;
+    std::uint64_t h = 0x9e3779b97f4a7c15u;
+    for (double c : coordinates(points[i])) {
+      // −0 hashes as +0 (they compare equal); on the bits, so that neither
+      // the rounding mode nor a user's -ffast-math can change it.
+      std::uint64_t bits = std::bit_cast<std::uint64_t>(c);
+      if ((bits << 1) == 0) bits = 0;
+      h ^= bits;
+      h *= 0xbf58476d1ce4e5b9u;
+      h ^= h >> 31;
+    }
+    for (std::size_t s = h & mask;; s = (s + 1) & mask) {
+      if (table[s] == 0) {
+        table[s] = static_cast<std::uint32_t>(i + 1);
+        break;
+      }
+      const std::uint32_t j = table[s] - 1;
+      if (compare(points[j], points[i]) == EQUAL) {
+        first[i] = j;
+        break;
+      }
+    }
+  }
   return first;
 }
 
 /// As above, every point compared.
-template <class Point, class Compare>
-std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare) {
-  return first_occurrences(points, compare, [](std::size_t) { return false; });
+template <class Point, class Compare, class Coordinates>
+std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Coordinates coordinates) {
+  return first_occurrences(points, compare, coordinates, [](std::size_t) { return false; });
 }
 
 }  // namespace dewall::kernel
