@@ -39,16 +39,22 @@ bool positively_oriented(const std::vector<dewall::kernel::Point_d<D>>& points,
 }
 
 /// Runs every engine on `points`: each must give CGAL's simplices, positively
-/// oriented; returns the engine the automatic choice used. The forced hybrid
-/// runs with regions of `region_points` (small: many walls and region
-/// boundaries), and not at all without them.
+/// oriented; returns the engine the automatic choice used with regions of
+/// `region_points` (40 when not given; the default size, at least 16384
+/// points, would make these inputs one region, which the automatic choice
+/// leaves to the incremental engine, also checked). The forced hybrid runs
+/// with regions of `region_points` (small: many walls and region boundaries),
+/// and not at all without them.
 template <int D>
 Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
                      std::optional<std::size_t> region_points = 40) {
   const auto expected = dewall::test::cgal_delaunay<D>(points);
   const auto forced = dewall::triangulate<D>(points, Options{.engine = Engine::dewall});
   const auto incremental = dewall::triangulate<D>(points, Options{.engine = Engine::cgal});
-  const auto automatic = dewall::triangulate<D>(points);
+  const auto automatic = dewall::triangulate<D>(points, Options{.region_points = region_points.value_or(40)});
+  const auto one_region = dewall::triangulate<D>(points);
+  CHECK(one_region.statistics.engine == Engine::cgal);
+  CHECK(one_region.simplices == incremental.simplices);
   if (region_points) {
     // The same output, in the same order, on one thread.
     const auto hybrid =
@@ -139,7 +145,7 @@ TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") 
   // A budget below what any search needs hands over once the allowance is
   // spent: 4^(d-2)·n = 8000 candidates here, a few hundred searches of ~10 candidates
   // (forced DeWall makes about 25,000 searches on these points).
-  const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5});
+  const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5, .region_points = 100});
   CHECK(t.statistics.engine == Engine::cgal);
   CHECK(t.statistics.searches_before_handover >= 1);
   CHECK(t.statistics.searches_before_handover <= 1000);

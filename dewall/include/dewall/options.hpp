@@ -14,9 +14,12 @@ enum class Engine {
   /// In 2D and 3D, Engine::hybrid, handing over to the incremental
   /// construction when the walls' searches prove the input is one no
   /// gift-wrapping search is fast on (points on or near one sphere, thin
-  /// surfaces, lattices): see Options::handover_candidates_per_search. In 4D
-  /// and up, the incremental construction (the hybrid's regions are CGAL's dD
-  /// triangulation there, and the walls only add to it).
+  /// surfaces, lattices): see Options::handover_candidates_per_search. An
+  /// input of at most one region's size (Options::region_points: 16384 distinct
+  /// points by default) is one region, built by the incremental construction
+  /// alone (a wall and two half regions cost more on one thread and gain
+  /// little on two). In 4D and up, the incremental construction (the hybrid's
+  /// regions are CGAL's dD triangulation there, and the walls only add to it).
   automatic,
   /// DeWall only: walls all the way down (the paper's algorithm).
   dewall,
