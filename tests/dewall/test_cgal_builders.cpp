@@ -20,7 +20,7 @@
 #include "dewall/cgal/delaunay_triangulation_2.hpp"
 #include "dewall/cgal/delaunay_triangulation_3.hpp"
 #include "dewall/cgal/delaunay_triangulation_d.hpp"
-#include "dewall_point_sets.hpp"
+#include "support/dewall_point_sets.hpp"
 #include "support/cgal_reference.hpp"
 
 using dewall::kernel::Point_d;

@@ -9,7 +9,7 @@
 
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/cgal_kernel_adapter.hpp"
-#include "dewall_point_sets.hpp"
+#include "support/dewall_point_sets.hpp"
 
 using dewall::kernel::Point_d;
 

@@ -9,7 +9,7 @@
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point_array.hpp"
-#include "dewall_point_sets.hpp"
+#include "support/dewall_point_sets.hpp"
 #include "support/cgal_reference.hpp"
 
 using namespace dewall;

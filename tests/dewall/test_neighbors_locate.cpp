@@ -15,7 +15,7 @@
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/locate.hpp"
-#include "dewall_point_sets.hpp"
+#include "support/dewall_point_sets.hpp"
 
 using dewall::kernel::Point_d;
 namespace kernel = dewall::kernel;

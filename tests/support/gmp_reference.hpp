@@ -35,21 +35,21 @@
 
 namespace dewall::test {
 
-/// The sign of det(a) for a square matrix of rationals, by Gaussian elimination
-/// with a non-zero pivot from the rows below (each row swap flips the sign).
-/// Destroys `a`. Complexity: O(n³) rational operations.
-inline kernel::Sign gmp_determinant_sign(std::vector<std::vector<mpq_class>>& a) {
+/// det(a) for a square matrix of rationals, by Gaussian elimination with a
+/// non-zero pivot from the rows below (each row swap flips the sign): the
+/// product of the pivots. Destroys `a`. Complexity: O(n³) rational operations.
+inline mpq_class gmp_determinant(std::vector<std::vector<mpq_class>>& a) {
   const std::size_t n = a.size();
-  int sign = 1;
+  mpq_class det = 1;
   for (std::size_t col = 0; col < n; ++col) {
     std::size_t pivot = col;
     while (pivot < n && sgn(a[pivot][col]) == 0) ++pivot;
-    if (pivot == n) return kernel::ZERO;
+    if (pivot == n) return 0;
     if (pivot != col) {
       std::swap(a[pivot], a[col]);
-      sign = -sign;
+      det = -det;
     }
-    if (sgn(a[col][col]) < 0) sign = -sign;
+    det *= a[col][col];
     for (std::size_t row = col + 1; row < n; ++row) {
       if (sgn(a[row][col]) == 0) continue;
       const mpq_class factor = a[row][col] / a[col][col];
@@ -57,7 +57,12 @@ inline kernel::Sign gmp_determinant_sign(std::vector<std::vector<mpq_class>>& a)
       a[row][col] = 0;
     }
   }
-  return sign > 0 ? kernel::POSITIVE : kernel::NEGATIVE;
+  return det;
+}
+
+/// The sign of det(a). Destroys `a`.
+inline kernel::Sign gmp_determinant_sign(std::vector<std::vector<mpq_class>>& a) {
+  return static_cast<kernel::Sign>(sgn(gmp_determinant(a)));
 }
 
 /// The exact orientation of p_0 … p_D: sign det[p_1 − p_0, …, p_D − p_0].

@@ -24,7 +24,9 @@
 #include <string>
 #include <vector>
 
+#include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/point.hpp"
+#include "dewall/kernel/point_array.hpp"
 
 namespace dewall::test {
 
@@ -98,20 +100,14 @@ std::vector<Point<D>> lattice_points(Rng& rng, std::size_t n, long lo, long hi) 
   return v;
 }
 
-/// Every point of the grid {0, …, k−1}^D, in lexicographic order (k^D points).
-/// With k = 2 these are the cube's vertices: all on one sphere.
+/// Every point of the grid {0, …, k−1}^D (k^D points): the library's `grid`
+/// generator (`dewall generate grid`), first coordinate fastest. With k = 2
+/// these are the cube's vertices: all on one sphere.
 template <int D>
 std::vector<Point<D>> grid_points(int k) {
-  std::vector<Point<D>> v;
-  std::array<int, D> c{};
-  for (;;) {
-    Point<D> p;
-    for (int j = 0; j < D; ++j) p[j] = c[static_cast<std::size_t>(j)];
-    v.push_back(p);
-    int j = D - 1;
-    while (j >= 0 && ++c[static_cast<std::size_t>(j)] == k) c[static_cast<std::size_t>(j--)] = 0;
-    if (j < 0) return v;
-  }
+  std::size_t n = 1;
+  for (int j = 0; j < D; ++j) n *= static_cast<std::size_t>(k);
+  return kernel::points_from_coordinates<D>(io::generate_points(io::Point_kind::grid, n, D, 0).coordinates);
 }
 
 /// centre + a random signed permutation of v: every such point lies on the

@@ -21,7 +21,7 @@
 #include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/simplex_reader.hpp"
-#include "dewall_point_sets.hpp"
+#include "support/dewall_point_sets.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/cli_runner.hpp"
 
