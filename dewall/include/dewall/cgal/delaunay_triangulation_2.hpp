@@ -108,11 +108,9 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 template <class DT, class InputIterator>
 DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const Options& options = {},
                                  const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
-  using Item = typename std::iterator_traits<InputIterator>::value_type;
-  const std::vector<Item> items(first, last);
-  DT dt(traits);
-  if (!detail::build_with_dewall_2(dt, items, options)) dt.insert(items.begin(), items.end());
-  return dt;
+  return detail::make_triangulation<DT>(first, last, options, traits, [](DT& dt, const auto& items, const Options& o) {
+    return detail::build_with_dewall_2(dt, items, o);
+  });
 }
 
 /// Convenience overload for a whole range (e.g. a std::vector of points).

@@ -80,44 +80,24 @@ bool build_with_dewall_3(DT& dt, const std::vector<Item>& items, const Options& 
 
 }  // namespace detail
 
-/// The Delaunay triangulation of the points in [first, last), as a DT.
-///
-/// DT: a CGAL::Delaunay_triangulation_3<K, Tds> for any kernel K and data
-/// structure Tds (vertex and cell bases of the caller's choice).
-/// The range holds DT::Point, or std::pair<DT::Point, Info> when the vertex
-/// base carries an Info (as for CGAL's range insert); each vertex gets the info
-/// of its first occurrence in the range.
-///
-/// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
-/// per distinct point (the first occurrence, in input order), DeWall's cells,
-/// one infinite cell per hull facet, all neighbour relations (matched through
-/// a hash table of facets), dimension 3. The result is exactly the
-/// triangulation CGAL's own insertion would give (the same cells as vertex
-/// sets, also for cospherical points, by the shared symbolic perturbation).
-///
-/// Falls back to CGAL's own insertion (same result, CGAL's speed) when
-///  * the distinct points are fewer than 4 or coplanar: CGAL then builds its
-///    lower-dimensional triangulation (dimension -1 … 2), which DeWall does not;
-///  * some coordinate is not exactly a double (e.g. an exact kernel holding
-///    1/3): DeWall decides on doubles, and cells built from rounded
-///    coordinates could be inverted or non-Delaunay for the true points;
-///  * DT uses CGAL::Fast_location (a Delaunay hierarchy, whose upper levels
-///    are built by insertion).
-/// With CGAL::Epick every finite point is exactly doubles: DeWall always runs
-/// on full-dimensional input.
+/// The Delaunay triangulation of the points in [first, last), as a DT: a
+/// CGAL::Delaunay_triangulation_3<K, Tds> for any kernel K and data structure
+/// Tds. Everything make_delaunay_triangulation_2 says holds, one dimension up:
+/// the range holds DT::Point or std::pair<DT::Point, Info>; DeWall's cells are
+/// assembled in dt.tds() with one infinite cell per hull facet (neighbours
+/// matched through a hash table of facets), exactly the triangulation CGAL's
+/// insertion gives; CGAL's own insertion builds it instead when the distinct
+/// points are fewer than 4 or coplanar, a coordinate is not exactly a double,
+/// or DT uses CGAL::Fast_location (a Delaunay hierarchy).
 ///
 /// \pre every coordinate is finite.
 /// \throws dewall::Invalid_input for a NaN or infinite coordinate.
-/// Complexity: DeWall's (expected O(n log n) for uniform points) plus O(n +
-/// number of cells) for the assembly.
 template <class DT, class InputIterator>
 DT make_delaunay_triangulation_3(InputIterator first, InputIterator last, const Options& options = {},
                                  const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
-  using Item = typename std::iterator_traits<InputIterator>::value_type;
-  const std::vector<Item> items(first, last);
-  DT dt(traits);
-  if (!detail::build_with_dewall_3(dt, items, options)) dt.insert(items.begin(), items.end());
-  return dt;
+  return detail::make_triangulation<DT>(first, last, options, traits, [](DT& dt, const auto& items, const Options& o) {
+    return detail::build_with_dewall_3(dt, items, o);
+  });
 }
 
 /// Convenience overload for a whole range (e.g. a std::vector of points).

@@ -197,4 +197,17 @@ bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& op
   return true;
 }
 
+/// The body of make_delaunay_triangulation_2/_3: dt built by `build_with_dewall`
+/// (build_with_dewall_2/_3) from the items of [first, last), or by CGAL's own
+/// insertion where DeWall does not apply.
+template <class DT, class InputIterator, class Build>
+DT make_triangulation(InputIterator first, InputIterator last, const Options& options,
+                      const typename DT::Geom_traits& traits, Build&& build_with_dewall) {
+  using Item = typename std::iterator_traits<InputIterator>::value_type;
+  const std::vector<Item> items(first, last);
+  DT dt(traits);
+  if (!build_with_dewall(dt, items, options)) dt.insert(items.begin(), items.end());
+  return dt;
+}
+
 }  // namespace dewall::cgal::detail
