@@ -544,3 +544,57 @@ TEST_CASE("command line: certify", "[certify][cli]") {
     CHECK(run_cli("certify " + d + "grid.txt " + d + "grid.tri --frobnicate").status == 2);
   }
 }
+
+namespace {
+
+/// Every field of two reports, violations in order.
+void check_same_report(const certify::Report& a, const certify::Report& b) {
+  CHECK(a.delaunay == b.delaunay);
+  CHECK(a.canonical == b.canonical);
+  CHECK(a.distinct_points == b.distinct_points);
+  CHECK(a.interior_facets == b.interior_facets);
+  CHECK(a.boundary_facets == b.boundary_facets);
+  CHECK(a.cospherical_facets == b.cospherical_facets);
+  REQUIRE(a.violations.size() == b.violations.size());
+  for (std::size_t i = 0; i < a.violations.size(); ++i) {
+    const auto &v = a.violations[i], &w = b.violations[i];
+    CHECK((v.rule == w.rule && v.simplex == w.simplex && v.other_simplex == w.other_simplex && v.face == w.face &&
+           v.point == w.point));
+  }
+}
+
+/// certify with 1, 2 and 5 threads, first violation only and all of them: the same reports.
+template <int D>
+void check_threads_agree(const std::vector<Point_d<D>>& p, const Cells<D>& t) {
+  for (bool all : {false, true}) {
+    const auto one = certify::certify<dewall::kernel::Filtered_kernel_d<D>>(p, t, {.all = all, .threads = 1});
+    for (unsigned threads : {2u, 5u})
+      check_same_report(one, certify::certify<dewall::kernel::Filtered_kernel_d<D>>(p, t, {.all = all, .threads = threads}));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("certify: the same report for every number of threads", "[certify][threads]") {
+  // Large enough for many ranges of rows (16384 each) and of facet buckets
+  // (4096 points each), with violations in several of them.
+  std::mt19937_64 rng(31);
+  const auto points = dewall::test::uniform<3>(20000, rng);
+  Cells<3> t = dewall_cells<3>(points);
+  check_threads_agree<3>(points, t);
+  // A lattice: cospherical facets everywhere, counted and noted alike.
+  const auto grid = dewall::test::lattice<3>(27000);
+  Cells<3> g = dewall_cells<3>(grid);
+  check_threads_agree<3>(grid, g);
+  // Mutants spread over the list: rows dropped (holes), a vertex replaced (a
+  // facet of three simplices, sides crossed), a row repeated, an index out of range.
+  for (std::size_t k = 1; k <= 5; ++k) t.erase(t.begin() + static_cast<std::ptrdiff_t>(k * t.size() / 7));
+  t[t.size() / 3][0] = t[2 * t.size() / 3][0];
+  t.push_back(t[t.size() / 2]);
+  t[t.size() - 10][2] = static_cast<std::uint32_t>(points.size() + 3);
+  CHECK(certify::certify<dewall::kernel::Filtered_kernel_d<3>>(points, t, {.all = true}).violations.size() >= 5);
+  check_threads_agree<3>(points, t);
+  // The lattice's rows in reverse order: the ranges see other rows, the report is the same.
+  std::reverse(g.begin(), g.end());
+  check_threads_agree<3>(grid, g);
+}

@@ -25,6 +25,73 @@ struct Face_ref {
   int position;
 };
 
+/// The (K−1)-faces of k-vertex rows filed by smallest vertex (a counting sort);
+/// `for_buckets` then groups the faces of a range of buckets. Ranges are
+/// independent: disjoint ranges may be grouped at once, on different threads.
+/// \pre every index < vertex_count; the K indices of a row are distinct.
+template <std::size_t K>
+class Face_buckets {
+ public:
+  Face_buckets(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows)
+      : rows_(rows), start_(vertex_count + 1, 0) {
+    static_assert(K >= 2);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int p = 0; p < static_cast<int>(K); ++p) ++start_[smallest(r, p) + 1];
+    for (std::size_t v = 0; v < vertex_count; ++v) start_[v + 1] += start_[v];
+    // Packed as row·K + position: one 64-bit word per face.
+    refs_.resize(start_[vertex_count]);
+    std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int p = 0; p < static_cast<int>(K); ++p)
+        refs_[next[smallest(r, p)]++] = static_cast<std::uint64_t>(r) * K + static_cast<std::uint64_t>(p);
+  }
+
+  std::size_t vertex_count() const { return start_.size() - 1; }
+
+  /// Calls `group(std::span<const Face_ref>)` once for every distinct face
+  /// whose smallest vertex is in [first, last), with every row/position that
+  /// has it (in increasing row order within a group), bucket by bucket.
+  template <class Group>
+  void for_buckets(std::size_t first, std::size_t last, Group&& group) const {
+    std::vector<std::pair<Key, std::uint64_t>> bucket;
+    std::vector<Face_ref> members;
+    for (std::size_t v = first; v < last; ++v) {
+      bucket.clear();
+      for (std::size_t i = start_[v]; i < start_[v + 1]; ++i)
+        bucket.emplace_back(key_of(static_cast<std::size_t>(refs_[i] / K), static_cast<int>(refs_[i] % K)), refs_[i]);
+      std::sort(bucket.begin(), bucket.end());
+      for (std::size_t i = 0; i < bucket.size();) {
+        std::size_t j = i;
+        members.clear();
+        for (; j < bucket.size() && bucket[j].first == bucket[i].first; ++j)
+          members.push_back({static_cast<std::size_t>(bucket[j].second / K), static_cast<int>(bucket[j].second % K)});
+        group(std::span<const Face_ref>(members));
+        i = j;
+      }
+    }
+  }
+
+ private:
+  using Key = std::array<std::uint32_t, K - 1>;
+  Key key_of(std::size_t row, int position) const {
+    Key key;
+    for (int j = 0, k = 0; j < static_cast<int>(K); ++j)
+      if (j != position) key[static_cast<std::size_t>(k++)] = rows_[row][static_cast<std::size_t>(j)];
+    std::sort(key.begin(), key.end());
+    return key;
+  }
+  std::uint32_t smallest(std::size_t row, int position) const {
+    std::uint32_t m = UINT32_MAX;
+    for (int j = 0; j < static_cast<int>(K); ++j)
+      if (j != position) m = std::min(m, rows_[row][static_cast<std::size_t>(j)]);
+    return m;
+  }
+
+  std::span<const std::array<std::uint32_t, K>> rows_;
+  std::vector<std::size_t> start_;
+  std::vector<std::uint64_t> refs_;
+};
+
 /// Calls `group(std::span<const Face_ref>)` once for every distinct (K−1)-face
 /// of the rows, with every row/position that has it (in increasing row order
 /// within a group). Groups come bucket by bucket (by smallest vertex).
@@ -32,50 +99,8 @@ struct Face_ref {
 /// Complexity: O(rows·K + vertex_count) plus sorting each bucket (O(b log b) each).
 template <std::size_t K, class Group>
 void group_faces(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows, Group&& group) {
-  static_assert(K >= 2);
-  using Key = std::array<std::uint32_t, K - 1>;
-  const auto key_of = [&](std::size_t row, int position) {
-    Key key;
-    for (int j = 0, k = 0; j < static_cast<int>(K); ++j)
-      if (j != position) key[static_cast<std::size_t>(k++)] = rows[row][static_cast<std::size_t>(j)];
-    std::sort(key.begin(), key.end());
-    return key;
-  };
-  const auto smallest = [&](std::size_t row, int position) {
-    std::uint32_t m = UINT32_MAX;
-    for (int j = 0; j < static_cast<int>(K); ++j)
-      if (j != position) m = std::min(m, rows[row][static_cast<std::size_t>(j)]);
-    return m;
-  };
-  // Counting sort of the face references by smallest vertex.
-  std::vector<std::size_t> start(vertex_count + 1, 0);
-  for (std::size_t r = 0; r < rows.size(); ++r)
-    for (int p = 0; p < static_cast<int>(K); ++p) ++start[smallest(r, p) + 1];
-  for (std::size_t v = 0; v < vertex_count; ++v) start[v + 1] += start[v];
-  // Packed as row·K + position: one 64-bit word per face.
-  std::vector<std::uint64_t> refs(start[vertex_count]);
-  {
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t r = 0; r < rows.size(); ++r)
-      for (int p = 0; p < static_cast<int>(K); ++p)
-        refs[next[smallest(r, p)]++] = static_cast<std::uint64_t>(r) * K + static_cast<std::uint64_t>(p);
-  }
-  std::vector<std::pair<Key, std::uint64_t>> bucket;
-  std::vector<Face_ref> members;
-  for (std::size_t v = 0; v < vertex_count; ++v) {
-    bucket.clear();
-    for (std::size_t i = start[v]; i < start[v + 1]; ++i)
-      bucket.emplace_back(key_of(static_cast<std::size_t>(refs[i] / K), static_cast<int>(refs[i] % K)), refs[i]);
-    std::sort(bucket.begin(), bucket.end());
-    for (std::size_t i = 0; i < bucket.size();) {
-      std::size_t j = i;
-      members.clear();
-      for (; j < bucket.size() && bucket[j].first == bucket[i].first; ++j)
-        members.push_back({static_cast<std::size_t>(bucket[j].second / K), static_cast<int>(bucket[j].second % K)});
-      group(std::span<const Face_ref>(members));
-      i = j;
-    }
-  }
+  const Face_buckets<K> buckets(vertex_count, rows);
+  buckets.for_buckets(0, vertex_count, group);
 }
 
 }  // namespace dewall::certify::detail

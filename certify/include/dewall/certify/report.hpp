@@ -96,6 +96,8 @@ struct Report {
 struct Options {
   /// Report every violation (true), or stop at the first fatal one (false).
   bool all = false;
+  /// At most this many threads (0: all cores). The report is the same for every value.
+  unsigned threads = 0;
 };
 
 /// A one-line English description of `v`; `name` turns a simplex row into
