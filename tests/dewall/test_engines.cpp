@@ -22,8 +22,11 @@ using dewall::Engine;
 using dewall::Options;
 
 template <int D>
-std::vector<dewall::kernel::Point_d<D>> generated(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed) {
-  return dewall::kernel::points_from_coordinates<D>(dewall::io::generate_points(kind, n, D, seed).coordinates);
+std::vector<dewall::kernel::Point_d<D>> generated(dewall::io::Point_kind kind, std::size_t n, std::uint64_t seed,
+                                                  int planes = 0) {
+  dewall::io::Generator_options shape;
+  shape.planes = planes;
+  return dewall::kernel::points_from_coordinates<D>(dewall::io::generate_points(kind, n, D, seed, shape).coordinates);
 }
 
 /// Every simplex positively oriented (the incremental engine reorients CGAL's cells).
@@ -95,6 +98,23 @@ TEST_CASE("engines: volume data stays with the hybrid", "[engine]") {
   CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::uniform, 3000, 7)) == Engine::hybrid);
   CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::bubbles, 3000, 8)) == Engine::hybrid);
   CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::uniform, 3000, 9)) == Engine::hybrid);
+}
+
+TEST_CASE("engines: regions whose spheres leave them hand over, others do not", "[engine]") {
+  // Two layers: most cells of a region span both layers with spheres as large
+  // as the region, so the region saves no search (wall.hpp). Regions of 3000
+  // points: about 10,000 cells each, above the size the rule looks at.
+  const auto layers = generated<3>(dewall::io::Point_kind::planes, 12000, 17, 2);
+  const auto expected = dewall::test::cgal_delaunay<3>(layers);
+  const auto t = dewall::triangulate<3>(layers, Options{.region_points = 3000});
+  CHECK(t.statistics.engine == Engine::cgal);
+  CHECK(t.statistics.searches_before_handover >= 1);
+  CHECK(dewall::test::as_set<3>(t.simplices) == expected);
+  CHECK(dewall::triangulate<3>(layers, Options{.engine = Engine::hybrid, .region_points = 3000}).statistics.engine ==
+        Engine::hybrid);
+  for (const auto kind : {dewall::io::Point_kind::uniform, dewall::io::Point_kind::bubbles})
+    CHECK(dewall::triangulate<3>(generated<3>(kind, 12000, 18), Options{.region_points = 3000}).statistics.engine ==
+          Engine::hybrid);
 }
 
 TEST_CASE("engines: the hybrid's regions on degenerate inputs", "[engine]") {

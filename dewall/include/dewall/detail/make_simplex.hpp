@@ -211,6 +211,11 @@ class Simplex_search {
   Simplex_sphere<D> sphere_of(const Simplex<D>& s) const { return Simplex_sphere<D>(coords_of(s)); }
 
   const Search_stats& stats() const { return stats_; }
+  /// Whether the searches are charged to a budget (Engine::automatic).
+  bool charges_budget() const { return budget_.has_value(); }
+  /// Gives up DeWall for the incremental construction, as a spent budget does.
+  /// \pre charges_budget().
+  [[noreturn]] void hand_over() const { budget_->spend(); }
 
  private:
   /// The answer of make_simplex(f) checked against every point with the exact
