@@ -83,7 +83,8 @@ Simplex_list read_binary_simplices(std::istream& in, const std::string& name, in
     const std::size_t before = list.table.indices.size();
     list.table.indices.resize(before + values);
     if (std::endian::native == std::endian::little && width == 4) {  // the indices as they are
-      std::memcpy(list.table.indices.data() + before, bytes.data(), values * 4);
+      // (values == 0: an empty list's data() may be null, which memcpy must not get.)
+      if (values > 0) std::memcpy(list.table.indices.data() + before, bytes.data(), values * 4);
     } else {
       for (std::size_t i = 0; i < values; ++i) {
         const std::uint64_t v = detail::load_le(bytes.data() + i * width, static_cast<int>(width));

@@ -51,7 +51,7 @@ class Fd_input_buffer : public std::streambuf {
     // Buffered bytes first, then large blocks straight into the caller's memory.
     auto wanted = static_cast<std::size_t>(n);
     std::size_t done = std::min(wanted, static_cast<std::size_t>(egptr() - gptr()));
-    std::memcpy(s, gptr(), done);
+    if (done > 0) std::memcpy(s, gptr(), done);  // before the first read gptr() may be null
     gbump(static_cast<int>(done));
     while (done < wanted) {
       if (wanted - done < capacity) {
