@@ -576,14 +576,15 @@ void check_threads_agree(const std::vector<Point_d<D>>& p, const Cells<D>& t) {
 }  // namespace
 
 TEST_CASE("certify: the same report for every number of threads", "[certify][threads]") {
-  // Large enough for many ranges of rows (16384 each) and of facet buckets
-  // (4096 points each), with violations in several of them.
+  // Large enough for several ranges of rows (16384 each) and of facet buckets
+  // (4096 points each), with violations in several of them; small enough for
+  // the sanitizer build (a minute at -O0 for twice these sizes).
   std::mt19937_64 rng(31);
-  const auto points = dewall::test::uniform<3>(20000, rng);
+  const auto points = dewall::test::uniform<3>(10000, rng);
   Cells<3> t = dewall_cells<3>(points);
   check_threads_agree<3>(points, t);
   // A lattice: cospherical facets everywhere, counted and noted alike.
-  const auto grid = dewall::test::lattice<3>(27000);
+  const auto grid = dewall::test::lattice<3>(9261);  // 21^3
   Cells<3> g = dewall_cells<3>(grid);
   check_threads_agree<3>(grid, g);
   // Mutants spread over the list: rows dropped (holes), a vertex replaced (a
