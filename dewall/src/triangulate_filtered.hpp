@@ -46,7 +46,7 @@ Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, cons
   // regions cost the kd-tree and the wall's searches, and gain nothing on one
   // thread (10^4 uniform points in 3D: 1.3x the incremental engine's time) and
   // little on two (1.1x).
-  if (distinct.size() <= region_points_for(options, points.size())) return incremental(&distinct);
+  if (distinct.size() <= region_points_for(options, distinct.size())) return incremental(&distinct);
   const Search_budget budget(options.handover_candidates_per_search, points.size(), D);
   try {
     return triangulate_generic<K>({}, points, options, simplices, wall_levels, budget, &regions, &distinct);

@@ -48,7 +48,7 @@
 //     the canonical one. A facet that passes 5 only unperturbed is cospherical
 //     and flipped against the perturbation: Delaunay, not canonical.
 //
-// Cost: O(n log n) to find duplicates, O(m·D) predicates and O(m·(D+1)) face
+// Cost: O(n) expected to find duplicates (hashing), O(m·D) predicates and O(m·(D+1)) face
 // bookkeeping by a counting sort on the smallest vertex (face_grouping.hpp),
 // for n points and m simplices: less than building the triangulation.
 #pragma once
@@ -63,6 +63,7 @@
 #include <numeric>
 #include <optional>
 #include <span>
+#include <system_error>
 #include <thread>
 #include <type_traits>
 #include <vector>
@@ -157,7 +158,7 @@ class Certifier {
   }
 
   /// Non-finite coordinates (when the kernel's points are doubles), then the
-  /// first occurrence of every point: sort by the exact lexicographic order.
+  /// first occurrence of every point: hashed, decided by the exact lexicographic order.
   void check_points() {
     const std::size_t n = points_.size();
     bad_point_.assign(n, false);
@@ -351,7 +352,11 @@ class Certifier {
       }
     };
     std::vector<std::thread> pool;
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    try {
+      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+    } catch (const std::system_error&) {
+      // No more threads to be had: those started and this one do the work.
+    }
     work();
     for (auto& t : pool) t.join();
     for (const auto& e : errors)
