@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -64,10 +65,16 @@ struct Run {
   double seconds = 0;  // the triangulation alone
 };
 
+/// Receives a run's simplices as whole rows of indices, a block at a time.
+using Simplex_rows_sink = std::function<void(std::span<const std::uint32_t>)>;
+
 /// Triangulates a point table of any supported dimension with the engine of
-/// `options` (default: automatic).
+/// `options` (default: automatic). The simplices go to Run::simplices, or,
+/// when `stream` is given, to it as they are built (options.stream); a
+/// streamed run writes no points, so the table's coordinates are then
+/// released once converted (10^8 points: 2.4 GB).
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
-Run triangulate_any(const io::Point_table& table, const Options& options = {});
+Run triangulate_any(io::Point_table& table, const Options& options = {}, const Simplex_rows_sink* stream = nullptr);
 
 /// Calls f(std::integral_constant<int, D>{}) for a dimension D = 2 … 6 known at
 /// run time. \throws Usage_error for any other dimension.

@@ -18,15 +18,28 @@ namespace dewall::cli {
 namespace {
 
 template <int D>
-Run triangulate_table(const io::Point_table& table, const Options& options) {
+Run triangulate_table(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream) {
   const auto points = kernel_points<D>(table);
+  if (stream) std::vector<double>().swap(table.coordinates);
   Run run;
+  auto& indices = run.simplices.indices;
   run.simplices.vertices_per_simplex = D + 1;
+  constexpr std::size_t rows_per_block = 1 << 15;
   const auto start = std::chrono::steady_clock::now();
-  const auto t = triangulate<kernel::Filtered_kernel_d<D>>(std::span<const kernel::Point_d<D>>(points), options);
-  run.stats = t.statistics;
-  run.simplices.indices.reserve(t.simplices.size() * (D + 1));
-  for (const Simplex<D>& s : t.simplices) run.simplices.indices.insert(run.simplices.indices.end(), s.begin(), s.end());
+  run.stats = triangulate_to<kernel::Filtered_kernel_d<D>>(
+      std::span<const kernel::Point_d<D>>(points),
+      [&](const Simplex<D>& s) {
+        indices.insert(indices.end(), s.begin(), s.end());
+        if (stream && indices.size() == rows_per_block * (D + 1)) {
+          (*stream)(indices);
+          indices.clear();
+        }
+      },
+      options);
+  if (stream) {
+    (*stream)(indices);
+    std::vector<std::uint32_t>().swap(indices);
+  }
   run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return run;
 }
@@ -47,8 +60,8 @@ certify::Report certify_any(const io::Point_table& points, const io::Simplex_tab
   return with_dimension(points.dimension, [&](auto d) { return certify_table<d()>(points, simplices, options); });
 }
 
-Run triangulate_any(const io::Point_table& table, const Options& options) {
-  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table, options); });
+Run triangulate_any(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream) {
+  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table, options, stream); });
 }
 
 void print_stats(std::FILE* out, const Run& run) {

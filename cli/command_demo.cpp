@@ -33,7 +33,7 @@ int command_demo(int argc, char** argv) {
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
   check_fits_in_memory(static_cast<std::size_t>(n), dim);
   std::printf("dewall demo: %ld %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim, seed);
-  const io::Point_table table = io::generate_points(kind, static_cast<std::size_t>(n), static_cast<int>(dim), seed);
+  io::Point_table table = io::generate_points(kind, static_cast<std::size_t>(n), static_cast<int>(dim), seed);
   Run run;
   try {
     run = triangulate_any(table);

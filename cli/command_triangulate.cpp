@@ -1,4 +1,4 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stream] [--stats] [--quiet]
 #include <cstdio>
 #include <optional>
 
@@ -14,7 +14,7 @@ int command_triangulate(int argc, char** argv) {
   std::string output = "-";
   std::string engine = "auto";
   std::optional<std::string> threads;  // absent: all cores
-  bool stats = false, quiet = false;
+  bool stats = false, quiet = false, stream = false;
   const auto operands = parse_arguments(
       argc, argv, 1,
       [&](const std::string& a, int& i) {
@@ -22,6 +22,7 @@ int command_triangulate(int argc, char** argv) {
         else if (a == "--engine") engine = next_arg(i, argc, argv);
         else if (a == "--threads") threads = next_arg(i, argc, argv);
         else if (a == "--stats") stats = true;
+        else if (a == "--stream") stream = true;
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -36,23 +37,33 @@ int command_triangulate(int argc, char** argv) {
     if (n < 1 || n > 4096) throw Usage_error("--threads must be 1 to 4096, not " + *threads);
     options.threads = static_cast<int>(n);
   }
+  if (stream && !io::can_stream_simplices(output))
+    throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
+                      " (.ele and .vtk files start with the count of simplices)");
+  options.stream = stream;
   io::Progress progress(!quiet && io::stderr_is_terminal());
-  const auto table = io::read_points_file(input, &progress);
+  auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
   if (io::is_vtk_path(output) && table.dimension > 3)
     throw io::Vtk_unsupported(io::printable(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
                               " holds points of dimension " + std::to_string(table.dimension) +
                               " (write a plain simplex list instead)");
   Run run;
+  // Streaming: the output is open before the triangulation starts, and
+  // complete (renamed into place) only once it ends.
+  std::optional<io::Simplex_stream_writer> writer;
+  if (stream) writer.emplace(output, table.dimension + 1);
+  const Simplex_rows_sink write_rows = [&](std::span<const std::uint32_t> rows) { writer->write(rows); };
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");
-    run = triangulate_any(table, options);
+    run = triangulate_any(table, options, stream ? &write_rows : nullptr);
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();
     return report_invalid_input(input_name(input), e, table.first_index);
   }
-  io::write_triangulation_file(output, table, run.simplices, &progress);
+  if (writer) writer->commit();
+  else io::write_triangulation_file(output, table, run.simplices, &progress);
   progress.finish();
   if (stats) print_stats(stderr, run);
   return 0;
@@ -62,7 +73,7 @@ int command_triangulate(int argc, char** argv) {
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
     "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N]\n"
-    "              [--stats] [--quiet]\n"
+    "              [--stream] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -72,8 +83,8 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"
     "      legacy VTK for ParaView when it ends in .vtk (2D and 3D).\n"
     "      --engine: the construction; the simplices are the same with each.\n"
-    "      hybrid builds DeWall's walls down to regions of max(16384, n/4)\n"
-    "      points and triangulates each region with CGAL's incremental\n"
+    "      hybrid builds DeWall's walls down to regions of n/4 points (16384 to\n"
+    "      262144) and triangulates each region with CGAL's incremental\n"
     "      construction (no merge step; the regions run in parallel). auto\n"
     "      (default) is hybrid, handing over to CGAL alone when the walls'\n"
     "      searches prove too costly (points on or near one sphere, thin\n"
@@ -82,6 +93,13 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      paper's algorithm) and cgal force one construction.\n"
     "      --threads N: at most N threads (default: all cores); the output is the\n"
     "      same, byte for byte, for every N.\n"
+    "      --stream writes each simplex as soon as it is built and keeps none\n"
+    "      in memory, and takes regions of at most 32768 points (plain list or\n"
+    "      .dwsx only): the same simplices, in the same\n"
+    "      order with --threads 1, in an order that varies with more threads.\n"
+    "      auto then decides once, at the first region, whether to hand over to\n"
+    "      CGAL (whose triangulation is whole in memory). To a pipe, a .dwsx\n"
+    "      stream leaves its count 'unknown' (readers take what follows).\n"
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"

@@ -16,6 +16,7 @@
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_d.h>
 
+#include <optional>
 #include <utility>
 
 #include "dewall/detail/input.hpp"
@@ -25,6 +26,9 @@ namespace dewall::detail {
 namespace {
 
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+/// Simplices per Simplex_output::put.
+constexpr std::size_t block_size = 8192;
 
 /// CGAL's triangulation of the points `ids` (point(i) gives the coordinates of
 /// point i), each finite cell handed to `emit(vertices, neighbors)`: vertices
@@ -127,36 +131,48 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Emit&& emit) {
 }  // namespace
 
 template <int D>
-Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices,
+Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
                                  const std::vector<std::size_t>* given_distinct) {
   using K = kernel::Filtered_kernel_d<D>;
   const kernel::Fp_environment_guard guard;  // CGAL's filters assume the default environment too
   const std::vector<std::size_t> distinct = given_distinct ? *given_distinct : distinct_points<K>(K{}, points);
-  std::vector<std::array<double, D>> coords(distinct.size());
-  for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
-  require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
+  {
+    std::vector<std::array<double, D>> coords(distinct.size());
+    for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
+    require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
+  }
 
   const std::vector<Index> ids(distinct.begin(), distinct.end());
-  const std::size_t before = simplices.size();
-  simplices.reserve(before + static_cast<std::size_t>(ids.size() * (D == 2 ? 2.0 : D == 3 ? 6.8 : 32.0)));
-  cgal_cells<D, false>(ids, [&](Index i) -> const std::array<double, D>& { return points[i].x; },
-                       [&](const Simplex<D>& s, const auto&) { simplices.push_back(s); });
   // Positively oriented, as DeWall writes them (TetGen .ele expects it).
   // CGAL's 2D faces and 3D cells are (its validity invariant); its dD cells
   // share one orientation, tested on the first. The engine tests check every
   // simplex. (Testing each cell cost 3 % of the run at 10^6 points.)
-  if constexpr (D > 3) {
-    if (simplices.size() > before) {
-      std::array<const kernel::Point_d<D>*, D + 1> p;
-      for (int i = 0; i <= D; ++i) p[static_cast<std::size_t>(i)] = &points[simplices[before][static_cast<std::size_t>(i)]];
-      if (K{}.orientation_d_object()(p) == kernel::NEGATIVE)
-        for (std::size_t k = before; k < simplices.size(); ++k) std::swap(simplices[k][0], simplices[k][1]);
-    }
-  }
+  std::optional<bool> flip;
+  if constexpr (D <= 3) flip = false;
+  std::vector<Built_simplex<D>> block;
+  block.reserve(block_size);
+  std::size_t count = 0;
+  cgal_cells<D, false>(ids, [&](Index i) -> const std::array<double, D>& { return points[i].x; },
+                       [&](Simplex<D> s, const auto&) {
+                         if (!flip) {
+                           std::array<const kernel::Point_d<D>*, D + 1> p;
+                           for (int i = 0; i <= D; ++i) p[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
+                           flip = K{}.orientation_d_object()(p) == kernel::NEGATIVE;
+                         }
+                         if (*flip) std::swap(s[0], s[1]);
+                         block.push_back({s, 0});
+                         if (block.size() == block_size) {
+                           output.put(block);
+                           count += block.size();
+                           block.clear();
+                         }
+                       });
+  output.put(block);
+  count += block.size();
   Statistics st;
   st.input_points = points.size();
   st.distinct_points = distinct.size();
-  st.simplices = simplices.size() - before;
+  st.simplices = count;
   st.engine = Engine::cgal;
   return st;
 }
@@ -192,7 +208,7 @@ bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D
 }
 
 #define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \
-  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, std::vector<Simplex<D>>&,    \
+  template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,         \
                                                const std::vector<std::size_t>*);                                \
   template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,                   \
                                      std::vector<Region_cell<D>>&);

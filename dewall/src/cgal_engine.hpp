@@ -16,11 +16,12 @@ namespace dewall::detail {
 
 /// The same input checks as DeWall's (Invalid_input: non-finite coordinates,
 /// too few distinct points, points not spanning E^D), then CGAL's triangulation
-/// of the distinct points (the first occurrence of each), appended to
-/// `simplices` as positively oriented input indices, in CGAL's cell order.
+/// of the distinct points (the first occurrence of each), handed to `output`
+/// as positively oriented input indices, in CGAL's cell order, in blocks as
+/// they are listed (the triangulation itself is whole in memory).
 /// `distinct`, when given, is distinct_points(points), computed by the caller.
 template <int D>
-Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, std::vector<Simplex<D>>& simplices,
+Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
                                  const std::vector<std::size_t>* distinct = nullptr);
 
 /// The region triangulator of Engine::hybrid (region.hpp): CGAL's

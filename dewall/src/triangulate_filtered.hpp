@@ -15,28 +15,21 @@ namespace dewall::detail {
 /// wall level 0 (it builds no walls); a hybrid region's, its recursion level.
 template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
-                                std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels) {
+                                Simplex_output<D>& output) {
   using K = kernel::Filtered_kernel_d<D>;
-  const std::size_t simplices_before = simplices.size(), levels_before = wall_levels ? wall_levels->size() : 0;
-  const auto incremental = [&](const std::vector<std::size_t>* distinct) {
-    simplices.resize(simplices_before);
-    const Statistics st = triangulate_with_cgal<D>(points, simplices, distinct);
-    if (wall_levels) wall_levels->resize(levels_before + st.simplices, 0);
-    return st;
-  };
   const Region_triangulator<D> regions = cgal_region_cells<D>;
   switch (options.engine) {
     case Engine::cgal:
-      return incremental(nullptr);
+      return triangulate_with_cgal<D>(points, output);
     case Engine::dewall:
-      return triangulate_generic<K>({}, points, options, simplices, wall_levels);
+      return triangulate_generic<K>({}, points, options, output);
     case Engine::hybrid:
-      return triangulate_generic<K>({}, points, options, simplices, wall_levels, std::nullopt, &regions);
+      return triangulate_generic<K>({}, points, options, output, std::nullopt, &regions);
     case Engine::automatic:
       // In 4D and up the regions are CGAL's dD triangulation, and the walls and
       // the regions' filter only add to it (uniform points, one thread: the
       // hybrid 1.5–1.7× the incremental engine's time in 4D–6D, DeWall 1.8–2×).
-      if constexpr (D >= 4) return incremental(nullptr);
+      if constexpr (D >= 4) return triangulate_with_cgal<D>(points, output);
       break;
   }
   // The input checks once, for both engines (on one circle they took a
@@ -46,13 +39,13 @@ Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, cons
   // regions cost the kd-tree and the wall's searches, and gain nothing on one
   // thread (10^4 uniform points in 3D: 1.3x the incremental engine's time) and
   // little on two (1.1x).
-  if (distinct.size() <= region_points_for(options, distinct.size())) return incremental(&distinct);
+  if (distinct.size() <= region_points_for(options, distinct.size())) return triangulate_with_cgal<D>(points, output, &distinct);
   const Search_budget budget(options.handover_candidates_per_search, points.size(), D);
   try {
-    return triangulate_generic<K>({}, points, options, simplices, wall_levels, budget, &regions, &distinct);
+    // (A spent budget has handed nothing to `output`: triangulate_generic.)
+    return triangulate_generic<K>({}, points, options, output, budget, &regions, &distinct);
   } catch (const Search_budget_spent& spent) {
-    if (wall_levels) wall_levels->resize(levels_before);
-    Statistics st = incremental(&distinct);
+    Statistics st = triangulate_with_cgal<D>(points, output, &distinct);
     st.searches_before_handover = spent.searches;
     return st;
   }

@@ -2,5 +2,4 @@
 #include "triangulate_filtered.hpp"
 
 template dewall::Statistics dewall::detail::triangulate_filtered<3>(std::span<const kernel::Point_d<3>>,
-                                                                     const Options&, std::vector<Simplex<3>>&,
-                                                                     std::vector<std::uint8_t>*);
+                                                                     const Options&, Simplex_output<3>&);

@@ -2,5 +2,4 @@
 #include "triangulate_filtered.hpp"
 
 template dewall::Statistics dewall::detail::triangulate_filtered<5>(std::span<const kernel::Point_d<5>>,
-                                                                     const Options&, std::vector<Simplex<5>>&,
-                                                                     std::vector<std::uint8_t>*);
+                                                                     const Options&, Simplex_output<5>&);

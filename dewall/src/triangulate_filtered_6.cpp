@@ -2,5 +2,4 @@
 #include "triangulate_filtered.hpp"
 
 template dewall::Statistics dewall::detail::triangulate_filtered<6>(std::span<const kernel::Point_d<6>>,
-                                                                     const Options&, std::vector<Simplex<6>>&,
-                                                                     std::vector<std::uint8_t>*);
+                                                                     const Options&, Simplex_output<6>&);

@@ -5,6 +5,7 @@
 #include <cstring>
 #include <istream>
 #include <ostream>
+#include <span>
 #include <vector>
 
 #include "binary_format.hpp"
@@ -20,22 +21,27 @@ constexpr std::size_t chunk_rows = std::size_t{1} << 19;
 
 }  // namespace
 
+void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count) {
+  detail::write_binary_header(out, binary_simplices_magic,
+                              {binary_simplices_version, static_cast<std::uint32_t>(dimension), 4, count});
+}
+
+void write_binary_simplex_indices(std::ostream& out, std::span<const std::uint32_t> indices) {
+  if constexpr (std::endian::native == std::endian::little) {
+    out.write(reinterpret_cast<const char*>(indices.data()), static_cast<std::streamsize>(indices.size() * 4));
+  } else {
+    std::vector<unsigned char> bytes(indices.size() * 4);
+    for (std::size_t i = 0; i < indices.size(); ++i) detail::store_le(bytes.data() + 4 * i, indices[i], 4);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  }
+}
+
 void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress) {
   const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  detail::write_binary_header(out, binary_simplices_magic,
-                              {binary_simplices_version, static_cast<std::uint32_t>(k - 1), 4, t.size()});
-  std::vector<unsigned char> bytes;
+  write_binary_simplices_header(out, t.vertices_per_simplex - 1, t.size());
   for (std::size_t done = 0; done < t.size() && out;) {
     const std::size_t rows = std::min(chunk_rows, t.size() - done);
-    const std::uint32_t* first = t.indices.data() + done * k;
-    const std::size_t values = rows * k;
-    if constexpr (std::endian::native == std::endian::little) {
-      out.write(reinterpret_cast<const char*>(first), static_cast<std::streamsize>(values * 4));
-    } else {
-      bytes.resize(values * 4);
-      for (std::size_t i = 0; i < values; ++i) detail::store_le(bytes.data() + 4 * i, first[i], 4);
-      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    }
+    write_binary_simplex_indices(out, std::span(t.indices).subspan(done * k, rows * k));
     done += rows;
     if (progress) progress->advance_to(done);
   }

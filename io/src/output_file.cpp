@@ -325,13 +325,37 @@ Output_file::~Output_file() {
 
 std::ostream& Output_file::stream() { return impl_->stream; }
 const std::string& Output_file::name() const { return impl_->name; }
+
+bool Output_file::patch(std::size_t offset, const void* data, std::size_t size) {
+  auto& m = *impl_;
+  if (m.direct) return false;
+  m.stream.flush();
+  check();
+  const char* p = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t written = ::pwrite(m.fd, p, size, static_cast<off_t>(offset));
+    if (written < 0) {
+      if (errno == EINTR) continue;
+      throw failure(m.name, "write error", errno);
+    }
+    p += written;
+    offset += static_cast<std::size_t>(written);
+    size -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
 bool Output_file::direct() const { return impl_->direct; }
+
+void Output_file::check() const {
+  const auto& m = *impl_;
+  if (m.buffer.error() != 0) throw failure(m.name, "write error", m.buffer.error());
+  if (!m.stream) throw Write_error(m.name + ": write error");
+}
 
 void Output_file::commit() {
   auto& m = *impl_;
   m.stream.flush();
-  if (m.buffer.error() != 0) throw failure(m.name, "write error", m.buffer.error());
-  if (!m.stream) throw Write_error(m.name + ": write error");
+  check();
   if (!m.direct) {
     m.finish_temporary();
   } else if (m.owned) {

@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <memory>
 #include <ostream>
+#include <span>
+#include <stdexcept>
 #include <unistd.h>
 
 #include "dewall/io/binary_points.hpp"
@@ -33,18 +36,30 @@ std::string shown(const std::string& path) { return path == "-" ? std::string("<
 
 }  // namespace
 
+namespace {
+
+/// Appends the plain list's lines for whole rows of k indices.
+void append_plain_lines(std::string& text, std::span<const std::uint32_t> indices, std::size_t k) {
+  char number[16];
+  for (std::size_t i = 0; i < indices.size(); ++i) {
+    const auto r = std::to_chars(number, number + sizeof number, indices[i]);
+    text.append(number, r.ptr);
+    text += (i + 1) % k == 0 ? '\n' : ' ';
+  }
+}
+
+}  // namespace
+
 void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress) {
   const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  std::string line;
-  for (std::size_t s = 0; s < t.size(); ++s) {
-    line.clear();
-    for (std::size_t i = 0; i < k; ++i) {
-      if (i) line += ' ';
-      line += std::to_string(t.indices[s * k + i]);
-    }
-    line += '\n';
-    out << line;
-    if (progress && (s & 0xffff) == 0) progress->advance_to(s);
+  constexpr std::size_t rows_per_write = 1 << 14;
+  std::string text;
+  for (std::size_t s = 0; s < t.size() && out; s += rows_per_write) {
+    const std::size_t rows = std::min(rows_per_write, t.size() - s);
+    text.clear();
+    append_plain_lines(text, std::span(t.indices).subspan(s * k, rows * k), k);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    if (progress) progress->advance_to(s + rows);
   }
 }
 
@@ -72,6 +87,41 @@ void write_simplices_file(const std::string& path, const Simplex_table& t, std::
 }
 
 bool is_vtk_path(const std::string& path) { return has_extension(path, ".vtk"); }
+
+bool can_stream_simplices(const std::string& path) { return !is_vtk_path(path) && !has_extension(path, ".ele"); }
+
+Simplex_stream_writer::Simplex_stream_writer(const std::string& path, int vertices_per_simplex)
+    : file_(std::make_unique<Output_file>(path)), binary_(has_extension(path, ".dwsx")),
+      k_(static_cast<std::size_t>(vertices_per_simplex)) {
+  if (!can_stream_simplices(path))
+    throw std::invalid_argument(shown(path) + ": .ele and .vtk files start with the count; they cannot be streamed");
+  if (binary_) write_binary_simplices_header(file_->stream(), vertices_per_simplex - 1, binary_simplices_unknown_count);
+}
+
+Simplex_stream_writer::~Simplex_stream_writer() = default;
+
+void Simplex_stream_writer::write(std::span<const std::uint32_t> indices) {
+  std::ostream& out = file_->stream();
+  if (binary_) {
+    write_binary_simplex_indices(out, indices);
+  } else {
+    text_.clear();
+    append_plain_lines(text_, indices, k_);
+    out.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  }
+  count_ += indices.size() / k_;
+  // Stop the triangulation at the first failed write (a full disk, a closed pipe).
+  if (!out) file_->check();
+}
+
+void Simplex_stream_writer::commit() {
+  if (binary_) {
+    unsigned char count[8];
+    for (int i = 0; i < 8; ++i) count[i] = static_cast<unsigned char>(std::uint64_t{count_} >> (8 * i));
+    file_->patch(binary_simplices_count_offset, count, sizeof count);  // (kept unknown on a pipe)
+  }
+  file_->commit();
+}
 
 void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
                               Progress* progress) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -151,6 +152,45 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
       const auto r = cli.with_stdin(std::string("triangulate - --threads '") + bad + "'", text);
       CHECK(r.status == 2);
       CHECK(r.err.find("thread") != std::string::npos);
+    }
+  }
+}
+
+TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
+  const dewall::test::Cli_in_directory cli("cli_test_stream");
+  using dewall::test::slurp;
+  // 40,000 points: walls and regions of 16384 points (streaming takes at most 32768).
+  REQUIRE(cli("generate uniform 40000 --seed 3 -o p.dwpt").status == 0);
+  SECTION("the collected bytes on one thread, the same set on all cores, certified") {
+    REQUIRE(cli("triangulate p.dwpt --threads 1 -o collected.dwsx").status == 0);
+    REQUIRE(cli("triangulate p.dwpt --threads 1 --stream -o streamed.dwsx").status == 0);
+    CHECK(slurp(cli.path("streamed.dwsx")) == slurp(cli.path("collected.dwsx")));  // the count too
+    REQUIRE(cli("triangulate p.dwpt --stream -o all_cores.dwsx --stats").status == 0);
+    CHECK(slurp(cli.path("all_cores.dwsx")).size() == slurp(cli.path("collected.dwsx")).size());
+    CHECK(cli("certify p.dwpt all_cores.dwsx").status == 0);
+    // The plain list on standard output, the same lines in the same order.
+    const auto plain = cli("triangulate p.dwpt --threads 1");
+    const auto plain_streamed = cli("triangulate p.dwpt --threads 1 --stream");
+    REQUIRE(plain.status == 0);
+    CHECK(!plain.out.empty());
+    CHECK(plain_streamed.out == plain.out);
+  }
+  SECTION("to a pipe the binary count stays unknown, and certify reads what follows") {
+    const std::string command = "cd " + cli.dir + " && rm -f pipe.dwsx got.dwsx && mkfifo pipe.dwsx && " +
+                                "{ cat pipe.dwsx > got.dwsx & " + DEWALL_CLI_PATH +
+                                " triangulate p.dwpt --stream -o pipe.dwsx; status=$?; wait; exit $status; }";
+    REQUIRE(std::system(command.c_str()) == 0);
+    const std::string got = slurp(cli.path("got.dwsx"));
+    REQUIRE(got.size() > 24);
+    CHECK(got.compare(16, 8, std::string(8, '\xff')) == 0);  // binary_simplices_unknown_count
+    CHECK(cli("certify p.dwpt got.dwsx").status == 0);
+  }
+  SECTION("formats that start with the count cannot be streamed") {
+    for (const char* output : {"t.ele", "t.vtk"}) {
+      const auto r = cli(std::string("triangulate p.dwpt --stream -o ") + output);
+      CHECK(r.status == 2);
+      CHECK(r.err.find("--stream") != std::string::npos);
+      CHECK(!std::ifstream(cli.path(output)).good());
     }
   }
 }

@@ -5,7 +5,9 @@
 // says which engine built the output.
 #include <catch2/catch.hpp>
 
+#include <atomic>
 #include <optional>
+#include <span>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -148,6 +150,119 @@ TEST_CASE("engines: the same list for every number of threads", "[engine][thread
               reference.simplices);
     }
   CHECK_THROWS_AS(dewall::triangulate<3>(inputs[2], Options{.threads = -1}), std::invalid_argument);
+}
+
+namespace {
+
+/// The simplices handed to triangulate_to's sink, checking that no two calls overlap.
+template <int D>
+std::vector<dewall::Simplex<D>> streamed(const std::vector<dewall::kernel::Point_d<D>>& points, Options options,
+                                         dewall::Statistics* statistics = nullptr) {
+  options.stream = true;
+  std::vector<dewall::Simplex<D>> out;
+  std::atomic<bool> inside{false};
+  bool overlapped = false;
+  const auto st = dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<D>>(
+      std::span<const dewall::kernel::Point_d<D>>(points),
+      [&](const dewall::Simplex<D>& s) {
+        if (inside.exchange(true)) overlapped = true;
+        out.push_back(s);
+        inside = false;
+      },
+      options);
+  CHECK(!overlapped);
+  CHECK(st.simplices == out.size());
+  if (statistics) *statistics = st;
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("engines: streaming gives the collected set, and the collected list on one thread", "[engine][stream]") {
+  struct Case {
+    std::vector<dewall::kernel::Point_d<3>> points;
+    std::size_t region_points;
+  };
+  const std::vector<Case> cases{
+      {generated<3>(dewall::io::Point_kind::uniform, 40000, 15), 0},  // regions of 16384 points
+      {generated<3>(dewall::io::Point_kind::uniform, 8000, 19), 300},
+      {generated<3>(dewall::io::Point_kind::bubbles, 6000, 16), 400},
+      {generated<3>(dewall::io::Point_kind::grid, 1000, 0), 60},
+      {generated<3>(dewall::io::Point_kind::planes, 12000, 17, 2), 3000},  // hands over at its first region
+      {generated<3>(dewall::io::Point_kind::sphere, 600, 5), 40}};         // hands over in the walls
+  for (const auto& c : cases)
+    for (Engine engine : {Engine::automatic, Engine::hybrid, Engine::dewall, Engine::cgal}) {
+      const Options options{.engine = engine, .region_points = c.region_points};
+      Options one = options;
+      one.threads = 1;
+      dewall::Statistics collected_stats, streamed_stats;
+      const auto collected = dewall::triangulate<3>(c.points, one);
+      collected_stats = collected.statistics;
+      const auto expected = dewall::test::as_set<3>(collected.simplices);
+      CHECK(expected == dewall::test::cgal_delaunay<3>(c.points));
+      // One thread: the same list, unless the collected run handed over after
+      // the stream's decision was settled (then the stream kept DeWall's order).
+      const auto serial = streamed<3>(c.points, one, &streamed_stats);
+      if (streamed_stats.engine == collected_stats.engine) CHECK(serial == collected.simplices);
+      CHECK(dewall::test::as_set<3>(serial) == expected);
+      CHECK(serial.size() == expected.size());
+      for (int threads : {2, 3}) {
+        Options many = options;
+        many.threads = threads;
+        const auto parallel = streamed<3>(c.points, many);
+        CHECK(dewall::test::as_set<3>(parallel) == expected);
+        CHECK(parallel.size() == expected.size());  // nothing held back twice, nothing lost
+      }
+    }
+}
+
+TEST_CASE("engines: a stream settled at its first region never hands over", "[engine][stream]") {
+  // A budget spent after the first region (a search costs about 6 candidates
+  // on these uniform points; measured): collected, the run hands over;
+  // streamed, the first region kept settles the decision and the run finishes
+  // with the walls, passing on what it held.
+  const auto points = generated<3>(dewall::io::Point_kind::uniform, 6000, 20);
+  const Options options{.threads = 1, .handover_candidates_per_search = 6, .region_points = 200};
+  const auto collected = dewall::triangulate<3>(points, options);
+  dewall::Statistics st;
+  const auto serial = streamed<3>(points, options, &st);
+  CHECK(collected.statistics.engine == Engine::cgal);
+  CHECK(st.engine == Engine::hybrid);
+  CHECK(dewall::test::as_set<3>(serial) == dewall::test::as_set<3>(collected.simplices));
+  CHECK(serial.size() == collected.simplices.size());
+}
+
+TEST_CASE("engines: a streaming task keeps one block; a held stream passes nothing on until released",
+          "[engine][stream]") {
+  struct Recorder final : dewall::detail::Simplex_output<3> {
+    std::vector<std::size_t> block_sizes;
+    std::vector<dewall::detail::Built_simplex<3>> all;
+    void put(std::span<const dewall::detail::Built_simplex<3>> block) override {
+      block_sizes.push_back(block.size());
+      all.insert(all.end(), block.begin(), block.end());
+    }
+  };
+  const auto simplex = [](std::uint32_t i) { return dewall::detail::Built_simplex<3>{{i, i + 1, i + 2, i + 3}, 1}; };
+  Recorder open_output, held_output;
+  dewall::detail::Simplex_stream<3> open(open_output, false), held(held_output, true);
+  dewall::detail::Built_simplices<3> a(&open), b(&held);
+  for (std::uint32_t i = 0; i < 20000; ++i) {
+    a.push_back(simplex(i));
+    b.push_back(simplex(i));
+  }
+  // Full blocks went on as they filled; the rest waits for flush().
+  CHECK(open_output.block_sizes == std::vector<std::size_t>{8192, 8192});
+  CHECK(held_output.block_sizes.empty());
+  a.flush();
+  b.flush();
+  held.release();
+  CHECK(open_output.all.size() == 20000);
+  CHECK(held_output.all.size() == 20000);
+  for (std::uint32_t i = 0; i < 20000; ++i) {
+    CHECK(open_output.all[i].vertices[0] == i);
+    CHECK(held_output.all[i].vertices[0] == i);
+  }
+  CHECK(a.size() == 20000);
 }
 
 TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[engine]") {

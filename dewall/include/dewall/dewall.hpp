@@ -39,6 +39,7 @@
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/detail/simplex_output.hpp"
 #include "dewall/options.hpp"
 #ifndef DEWALL_UNSAFE_FP_FLAGS
 #include "dewall/detail/triangulate_generic.hpp"
@@ -48,7 +49,7 @@ namespace dewall {
 
 /// A simplex as D + 1 indices into the input, positively oriented.
 template <int D>
-using Simplex = std::array<std::uint32_t, D + 1>;
+using Simplex = detail::Simplex<D>;
 
 namespace detail {
 
@@ -57,7 +58,7 @@ namespace detail {
 /// for D = 2 … 6); as triangulate_generic.
 template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
-                                std::vector<Simplex<D>>& simplices, std::vector<std::uint8_t>* wall_levels);
+                                Simplex_output<D>& output);
 
 template <class>
 inline constexpr bool always_false = false;
@@ -66,10 +67,10 @@ inline constexpr bool always_false = false;
 /// (with the choice of engine, Options::engine), here for any other (DeWall).
 template <kernel::DelaunayKernel K>
 Statistics run_engine(std::span<const typename K::Point_d> points, const Options& options, const K& k,
-                             std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
+                      Simplex_output<K::dimension>& output) {
   if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
     (void)k;
-    return triangulate_filtered<K::dimension>(points, options, simplices, wall_levels);
+    return triangulate_filtered<K::dimension>(points, options, output);
   } else {
 #ifdef DEWALL_UNSAFE_FP_FLAGS
     static_assert(always_false<K>,
@@ -83,7 +84,7 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
     if (options.engine == Engine::cgal || options.engine == Engine::hybrid)
       throw std::invalid_argument(std::string("dewall: Engine::") + engine_name(options.engine) +
                                   " needs the project's kernel (Filtered_kernel_d)");
-    return triangulate_generic<K>(k, points, options, simplices, wall_levels);
+    return triangulate_generic<K>(k, points, options, output);
 #endif
   }
 }
@@ -91,45 +92,61 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
 /// run_engine in an arena of Options::threads threads, when that is given.
 template <kernel::DelaunayKernel K>
 Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
-                             std::vector<Simplex<K::dimension>>& simplices, std::vector<std::uint8_t>* wall_levels) {
+                             Simplex_output<K::dimension>& output) {
   if (options.threads < 0)
     throw std::invalid_argument("dewall: Options::threads must be 0 (all cores) or positive, not " +
                                 std::to_string(options.threads));
-  if (options.threads == 0) return run_engine<K>(points, options, k, simplices, wall_levels);
+  if (options.threads == 0) return run_engine<K>(points, options, k, output);
   tbb::task_arena arena(options.threads);
-  return arena.execute([&] { return run_engine<K>(points, options, k, simplices, wall_levels); });
+  return arena.execute([&] { return run_engine<K>(points, options, k, output); });
 }
+
+/// Hands each simplex of the engine's blocks to a caller's sink: sink(simplex),
+/// or sink(simplex, level) when it takes the wall's recursion level.
+template <int D, class Sink>
+class Sink_output final : public Simplex_output<D> {
+ public:
+  explicit Sink_output(Sink& sink) : sink_(sink) {}
+  void put(std::span<const Built_simplex<D>> block) override {
+    for (const Built_simplex<D>& s : block) {
+      if constexpr (std::is_invocable_v<Sink&, const Simplex<D>&, int>) sink_(s.vertices, static_cast<int>(s.wall_level));
+      else sink_(s.vertices);
+    }
+  }
+
+ private:
+  Sink& sink_;
+};
 
 }  // namespace detail
 
 /// The Delaunay triangulation of `points`, handed to `sink(simplex)` once for
-/// each simplex (a dewall::Simplex<D> of input indices, positively oriented), in
-/// DeWall's depth-first order, then the hybrid's gift-wrapped closing
-/// simplices (the same for any number of threads). The
-/// simplices are handed over once the triangulation is complete; true streaming
-/// (memory near the size of the walls) is future work. A sink callable as
-/// sink(simplex, level) also receives the recursion level of the wall that
-/// built the simplex (0: the first wall; the paper's Figures 2, 4, 5).
-/// When the incremental engine built them (Options::engine, Statistics::engine)
-/// the order is CGAL's and every level is 0.
+/// each simplex (a dewall::Simplex<D> of input indices, positively oriented).
+/// A sink callable as sink(simplex, level) also receives the recursion level
+/// of the wall that built the simplex (0: the first wall; the paper's
+/// Figures 2, 4, 5; 0 for every simplex the incremental engine built).
+///
+/// By default the simplices are handed over once the triangulation is
+/// complete, in DeWall's depth-first order, then the hybrid's gift-wrapped
+/// closing simplices: the same order for any number of threads; when the
+/// incremental engine built them (Options::engine, Statistics::engine), in
+/// CGAL's order. With Options::stream they are handed over as they are built
+/// and not kept (memory: the points, the search structure and the regions in
+/// progress); the set is the same, and so is the order with one thread
+/// (Options::threads = 1). The sink is never called concurrently, but with
+/// more threads it is called from several, in an order that depends on
+/// their timing.
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
-/// points, or points that do not span E^D.
+/// points, or points that do not span E^D. An exception from the sink ends
+/// the triangulation and is passed on.
 /// Complexity: expected O(n log n) on uniformly distributed points; with
 /// Engine::automatic (the default) at most a small multiple of the incremental
 /// construction's on any input.
 template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {
-  constexpr int D = K::dimension;
-  constexpr bool wants_level = std::is_invocable_v<Sink, const Simplex<D>&, int>;
-  std::vector<Simplex<D>> simplices;
-  std::vector<std::uint8_t> levels;
-  const Statistics st = detail::run_triangulation<K>(points, options, k, simplices, wants_level ? &levels : nullptr);
-  for (std::size_t i = 0; i < simplices.size(); ++i) {
-    if constexpr (wants_level) sink(simplices[i], static_cast<int>(levels[i]));
-    else sink(simplices[i]);
-  }
-  return st;
+  detail::Sink_output<K::dimension, std::remove_reference_t<Sink>> output(sink);
+  return detail::run_triangulation<K>(points, options, k, output);
 }
 
 /// The triangulation as a list of simplices.
@@ -145,7 +162,7 @@ template <kernel::DelaunayKernel K>
 Triangulation<K::dimension> triangulate(std::span<const typename K::Point_d> points, const Options& options = {},
                                         const K& k = {}) {
   Triangulation<K::dimension> t;
-  t.statistics = detail::run_triangulation<K>(points, options, k, t.simplices, nullptr);
+  t.statistics = triangulate_to<K>(points, [&](const Simplex<K::dimension>& s) { t.simplices.push_back(s); }, options, k);
   return t;
 }
 

@@ -86,19 +86,38 @@ struct Options {
   /// input's name: see docs/engines.md.
   double handover_candidates_per_search = 150;
   /// Engine::hybrid and automatic: the largest region left to the incremental
-  /// construction; 0 chooses max(16384, n / 4): two levels of walls on large
-  /// inputs, four regions to run in parallel. The walls cost about 4× the
-  /// incremental construction per simplex, so each level costs time on any
-  /// number of cores (one thread, uniform 10^6: regions of n/8 5.07 s, n/4
-  /// 4.65 s, n/2 4.55 s; two threads 2.90 / 2.62 / 2.51 s; 10^4–3·10^4
-  /// points gain as much from one level of walls instead of two). Fixed by n,
-  /// never by the number of threads, so the output does not depend on them.
+  /// construction; 0 chooses n / 4 within [16384, 262144], and with
+  /// Options::stream at most 32768: two levels of walls on 10^5–10^6 points,
+  /// four regions to run in parallel. The walls cost about 4× the incremental
+  /// construction per simplex, so each level costs time on any number of
+  /// cores (one thread, uniform 10^6: regions of n/8 5.07 s, n/4 4.65 s, n/2
+  /// 4.55 s; two threads 2.90 / 2.62 / 2.51 s; 10^4–3·10^4 points gain as
+  /// much from one level of walls instead of two). But a region's
+  /// triangulation is in memory while it runs, about 900 bytes per point
+  /// (uniform 10^6, both cores, peak memory: regions of n/4 577 MB, 131072
+  /// points 354 MB, 32768 points 199 MB, 16384 points 173 MB; the time 3.30,
+  /// 3.45, 3.75, 4.17 s): the upper bound keeps 10^7–10^8 points from holding
+  /// gigabytes per region, and streaming, which is for memory, takes smaller
+  /// ones. Fixed by n, never by the number of threads, so the output does not
+  /// depend on them.
   std::size_t region_points = 0;
+  /// triangulate_to hands the simplices to its sink as they are built, and
+  /// does not keep them (dewall.hpp). The same simplices; the same order with
+  /// one thread, an order that depends on the threads' timing with more.
+  /// Simplices passed on cannot be taken back, so Engine::automatic decides
+  /// once whether to hand over to the incremental engine: it holds what it
+  /// builds until the first region's simplices are kept, and never hands over
+  /// after that (search_budget.hpp, Handover_decision). When it hands over,
+  /// the incremental engine's triangulation is whole in memory, as it is
+  /// without streaming.
+  bool stream = false;
 };
 
 /// The region size Options::region_points asks for, for n points.
 constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
-  return o.region_points ? o.region_points : (n / 4 > 16384 ? n / 4 : 16384);
+  if (o.region_points) return o.region_points;
+  const std::size_t largest = o.stream ? 32768 : 262144;
+  return n / 4 < 16384 ? 16384 : n / 4 > largest ? largest : n / 4;
 }
 
 /// Counters for the paper's Table 1, filled by triangulate.

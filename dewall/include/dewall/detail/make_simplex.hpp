@@ -213,9 +213,10 @@ class Simplex_search {
   const Search_stats& stats() const { return stats_; }
   /// Whether the searches are charged to a budget (Engine::automatic).
   bool charges_budget() const { return budget_.has_value(); }
-  /// Gives up DeWall for the incremental construction, as a spent budget does.
+  /// Gives up DeWall for the incremental construction, as a spent budget does
+  /// (unless the hand-over decision is settled: then it returns).
   /// \pre charges_budget().
-  [[noreturn]] void hand_over() const { budget_->spend(); }
+  void hand_over() { budget_->spend(); }
 
  private:
   /// The answer of make_simplex(f) checked against every point with the exact

@@ -9,6 +9,7 @@
 // all tasks would see their charges interleaved differently on each run.)
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 
@@ -19,6 +20,28 @@ namespace dewall::detail {
 /// Thrown out of the DeWall recursion when a budget is spent.
 struct Search_budget_spent {
   std::size_t searches;  // of the task whose budget it was
+};
+
+/// Streaming (Options::stream) cannot take back simplices it has passed on,
+/// so there the hand-over is decided once, for all tasks: open until the first
+/// region's simplices are kept, then settled (no hand-over afterwards: the
+/// budgets stop counting) or abandoned (a budget was spent first: the
+/// triangulation hands over, and the held stream is dropped). The first of
+/// the two wins, whichever thread gets there first.
+class Handover_decision {
+ public:
+  /// True when the run goes on without handing over.
+  bool settle() { return decide(settled); }
+  /// True when the run hands over.
+  bool abandon() { return decide(abandoned); }
+
+ private:
+  enum State { open, settled, abandoned };
+  bool decide(State wanted) {
+    State s = open;
+    return state_.compare_exchange_strong(s, wanted) || s == wanted;
+  }
+  std::atomic<State> state_{open};
 };
 
 class Search_budget {
@@ -35,6 +58,10 @@ class Search_budget {
   /// points; d: their dimension.
   Search_budget(double per_search, std::size_t n, int d)
       : per_search_(per_search), allowance_(64 * per_search + static_cast<double>(n << (2 * (d - 2)))) {}
+
+  /// From now on (and in every copy made from now on) a spent budget hands
+  /// over only if `decision` is not settled.
+  void decide_with(Handover_decision* decision) { decision_ = decision; }
 
   /// A search (or an emptiness test) begins: the slow-path evaluations of this
   /// thread are charged from here.
@@ -55,18 +82,27 @@ class Search_budget {
   /// n / 100 exact tests in 2D. Called during long searches too, so one
   /// search of a sphere's points does not run to its end.
   void charge(std::size_t candidates) {
+    if (settled_) return;
     const kernel::Slow_path_counts& now = kernel::slow_path_counts();
     slow_cost_ += interval_cost * (now.interval - mark_.interval) + exact_cost * (now.exact - mark_.exact);
     mark_ = now;
     if (static_cast<double>(candidates + slow_cost_) > per_search_ * static_cast<double>(searches_) + allowance_)
-      throw Search_budget_spent{searches_};
+      spend();
   }
 
-  /// Hands over now, whatever is left (a region that saves no search, wall.hpp).
-  [[noreturn]] void spend() const { throw Search_budget_spent{searches_}; }
+  /// Hands over now, whatever is left (a region that saves no search, wall.hpp),
+  /// unless the decision is settled: then it returns.
+  /// \throws Search_budget_spent
+  void spend() {
+    if (settled_) return;
+    if (!decision_ || decision_->abandon()) throw Search_budget_spent{searches_};
+    settled_ = true;  // (not asking the shared decision again on every charge)
+  }
 
  private:
   double per_search_, allowance_;
+  Handover_decision* decision_ = nullptr;
+  bool settled_ = false;
   std::size_t searches_ = 0;
   std::uint64_t slow_cost_ = 0;
   kernel::Slow_path_counts mark_;

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <mutex>
@@ -34,6 +35,7 @@
 #include "dewall/detail/first_simplex.hpp"
 #include "dewall/detail/region.hpp"
 #include "dewall/detail/search_budget.hpp"
+#include "dewall/detail/simplex_output.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -46,52 +48,6 @@ struct Wall_stats {
   std::size_t region_simplices = 0;
 };
 
-/// A simplex with the recursion level of the wall that built it (0: the first
-/// wall). Its vertices are input indices (Point_set::input_index): mapped when
-/// it is built, by the task that built it, so that the map's random reads
-/// (1 s of 10 at 10^6 points when done after the recursion) run in parallel.
-template <int D>
-struct Built_simplex {
-  Simplex<D> vertices;
-  std::uint8_t wall_level;
-};
-
-/// The built simplices in output order, in blocks of fixed capacity: a
-/// push never moves earlier simplices, and the parallel recursion joins its
-/// subproblems' output by moving blocks, not simplices (profile of 10^5
-/// uniform points: copying between growing buffers and the page faults of
-/// their new memory took 15 % of the run).
-template <int D>
-class Built_simplices {
- public:
-  void push_back(const Built_simplex<D>& s) {
-    if (blocks_.empty() || blocks_.back().size() == block_capacity) {
-      blocks_.emplace_back();
-      blocks_.back().reserve(block_capacity);
-    }
-    blocks_.back().push_back(s);
-    ++size_;
-  }
-  /// Appends `other`'s simplices after this one's.
-  void append(Built_simplices&& other) {
-    for (auto& b : other.blocks_) blocks_.push_back(std::move(b));
-    size_ += other.size_;
-    other.blocks_.clear();
-    other.size_ = 0;
-  }
-  std::size_t size() const { return size_; }
-  template <class F>
-  void for_each(F&& f) const {
-    for (const auto& b : blocks_)
-      for (const auto& s : b) f(s);
-  }
-
- private:
-  static constexpr std::size_t block_capacity = 8192;
-  std::vector<std::vector<Built_simplex<D>>> blocks_;
-  std::size_t size_ = 0;
-};
-
 template <class K>
 class Wall_builder {
   static constexpr int D = K::dimension;
@@ -102,11 +58,16 @@ class Wall_builder {
   /// to a copy of it (search_budget.hpp).
   /// regions: when given, a subproblem of at most region_points points is
   /// triangulated by it instead of by more walls (region.hpp).
+  /// decision: when given (streaming with a budget), settled by the first
+  /// region kept, which then releases the stream.
   Wall_builder(const Point_set<K>& ps, int parallel_depth, const std::optional<Search_budget>& budget = std::nullopt,
-               const Region_triangulator<D>* regions = nullptr, std::size_t region_points = 0)
-      : ps_(ps), parallel_depth_(parallel_depth), budget_(budget), regions_(regions), region_points_(region_points) {}
+               const Region_triangulator<D>* regions = nullptr, std::size_t region_points = 0,
+               Handover_decision* decision = nullptr)
+      : ps_(ps), parallel_depth_(parallel_depth), budget_(budget), regions_(regions), region_points_(region_points),
+        decision_(decision) {}
 
-  /// Appends the simplices of the triangulation of `points` to `out`.
+  /// Appends the simplices of the triangulation of `points` to `out` (and
+  /// flushes it when it streams).
   /// \throws Search_budget_spent when a task's budget is spent.
   void run(std::span<Index> points, Built_simplices<D>& out) {
     Simplex_search<K> search(ps_, budget_);
@@ -114,6 +75,7 @@ class Wall_builder {
     std::vector<Face<D>> open_faces;
     recurse(points, Active_face_list<D>{}, Region_bounds<D>{}, 0, true, true, out, open_faces, search, stats);
     finish(open_faces, out, search, stats);
+    out.flush();
     merge(search.stats(), stats);
   }
 
@@ -202,7 +164,9 @@ class Wall_builder {
     const Region_bounds<D> b1 = bounds.cut(split->axis, split->value, true);
     const Region_bounds<D> b2 = bounds.cut(split->axis, split->value, false);
     if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
-      Built_simplices<D> out1, out2;
+      // Streaming: this task's simplices go before its subproblems'.
+      out.flush();
+      Built_simplices<D> out1(out.stream()), out2(out.stream());
       std::vector<Face<D>> open1, open2;
       auto task = [&](std::span<Index> p, Active_face_list<D>& a, const Region_bounds<D>& b, Built_simplices<D>& o,
                       std::vector<Face<D>>& open) {
@@ -211,9 +175,17 @@ class Wall_builder {
         Simplex_search<K> s(ps_, budget_);
         Wall_stats st;
         recurse(p, std::move(a), b, depth + 1, false, regions_apply, o, open, s, st);
+        o.flush();
         merge(s.stats(), st);
       };
-      tbb::parallel_invoke([&] { task(p1, afl1, b1, out1, open1); }, [&] { task(p2, afl2, b2, out2, open2); });
+      // The same tasks (and budgets) on one thread, in output order: a stream
+      // then has the collected order.
+      if (tbb::this_task_arena::max_concurrency() == 1) {
+        task(p1, afl1, b1, out1, open1);
+        task(p2, afl2, b2, out2, open2);
+      } else {
+        tbb::parallel_invoke([&] { task(p1, afl1, b1, out1, open1); }, [&] { task(p2, afl2, b2, out2, open2); });
+      }
       out.append(std::move(out1));
       out.append(std::move(out2));
       open_faces.insert(open_faces.end(), open1.begin(), open1.end());
@@ -295,6 +267,8 @@ class Wall_builder {
     while (!afl.empty()) open_faces.push_back(afl.pop());
     stats.simplices += out.size() - before;
     stats.region_simplices += out.size() - before;
+    // Streaming: a region kept means the hybrid works on this input.
+    if (decision_ && decision_->settle() && out.stream()) out.stream()->release();
     return true;
   }
 
@@ -353,6 +327,7 @@ class Wall_builder {
   static constexpr std::size_t min_cells_for_handover = 4096;
   const Region_triangulator<D>* regions_;
   std::size_t region_points_;
+  Handover_decision* decision_;
   std::mutex mutex_;
   Wall_stats stats_;
   Search_stats search_stats_;

@@ -18,7 +18,9 @@
 #pragma once
 
 #include <cstdint>
+#include <cstddef>
 #include <iosfwd>
+#include <span>
 #include <string>
 
 #include "dewall/io/simplex_reader.hpp"
@@ -36,6 +38,14 @@ inline constexpr std::uint64_t binary_simplices_unknown_count = ~std::uint64_t{0
 /// indices; `progress`, when given, receives the simplices written. The caller
 /// checks the stream state.
 void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress = nullptr);
+
+/// The header alone, for a writer that streams the indices after it
+/// (binary_simplices_unknown_count when it cannot know the count yet).
+void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count);
+/// Indices as the format stores them (4 bytes each), whole simplices.
+void write_binary_simplex_indices(std::ostream& out, std::span<const std::uint32_t> indices);
+/// Byte offset of the header's count field.
+inline constexpr std::size_t binary_simplices_count_offset = 16;
 
 /// Reads a binary simplex file from `in` (opened in binary mode), magic
 /// included; the rows get no line numbers (Simplex_list::lines stays empty).

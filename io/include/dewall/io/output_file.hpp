@@ -51,10 +51,17 @@ class Output_file {
   /// The stream to write to (binary: no newline translation). A failed write
   /// sets its badbit; commit() reports the error.
   std::ostream& stream();
+  /// \throws Write_error when a write to stream() has failed so far.
+  void check() const;
   /// Makes the output final: flushes, and for a temporary fsyncs, renames it
   /// over the target and fsyncs the directory.
   /// \throws Write_error on any failure (nothing is left behind for a temporary).
   void commit();
+  /// Overwrites `size` bytes already written at `offset` (a header field known
+  /// only at the end) and returns true; returns false, writing nothing, for a
+  /// direct target (a pipe or a device cannot seek).
+  /// \throws Write_error when the write fails.
+  bool patch(std::size_t offset, const void* data, std::size_t size);
   /// The target as messages name it ("<stdout>", or the path made printable).
   const std::string& name() const;
   /// True when the target is written in place (standard output, devices,

@@ -9,6 +9,8 @@
 #include <array>
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -17,6 +19,7 @@
 namespace dewall::io {
 
 class Progress;
+class Output_file;
 
 /// Simplices as rows of `vertices_per_simplex` indices, stored row after row.
 struct Simplex_table {
@@ -47,6 +50,36 @@ void write_triangulation_file(const std::string& path, const Point_table& points
 
 /// True when `path` names a legacy VTK file (".vtk", any case).
 bool is_vtk_path(const std::string& path);
+
+/// True when simplices can be written to `path` as they come: the plain list
+/// and .dwsx, not .ele and .vtk (whose headers start with the count).
+bool can_stream_simplices(const std::string& path);
+
+/// Simplices written to a file as they come (dewall triangulate --stream),
+/// through io::Output_file: the plain list, or the binary format for ".dwsx",
+/// whose count is written when commit() knows it; on a target that cannot
+/// seek (a pipe, a device) it stays "unknown" (binary_simplices.hpp), and
+/// readers take the simplices up to the end.
+class Simplex_stream_writer {
+ public:
+  /// \throws Write_error when `path` cannot be opened; std::invalid_argument
+  /// when !can_stream_simplices(path).
+  Simplex_stream_writer(const std::string& path, int vertices_per_simplex);
+  ~Simplex_stream_writer();
+  /// Writes whole rows of vertices_per_simplex indices.
+  /// \throws Write_error as soon as a write fails.
+  void write(std::span<const std::uint32_t> indices);
+  /// Completes the file (Output_file::commit). \throws Write_error
+  void commit();
+  std::size_t count() const { return count_; }
+
+ private:
+  std::unique_ptr<Output_file> file_;
+  bool binary_;
+  std::size_t k_;
+  std::size_t count_ = 0;
+  std::string text_;
+};
 
 /// One point per line, coordinates separated by single spaces, each in the
 /// shortest form that reads back to the same double (the round trip is exact).
