@@ -31,6 +31,8 @@ struct Usage_error : std::runtime_error {
 std::string next_arg(int& i, int argc, char** argv);
 /// A non-negative integer argument. \throws Usage_error otherwise.
 long parse_long(const std::string& s, const char* what);
+/// --threads N: 1 to 4096. \throws Usage_error otherwise.
+int parse_thread_count(const std::string& text);
 
 /// True when argument `a` is an option: it starts with '-' and is neither "-"
 /// (standard input or output) nor a negative number ("-1" is an operand, which

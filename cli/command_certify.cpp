@@ -1,4 +1,4 @@
-// dewall certify POINTS SIMPLICES [--canonical] [--all] [--json]
+// dewall certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N]
 #include <chrono>
 #include <cstdio>
 #include <span>
@@ -18,10 +18,11 @@ int command_certify(int argc, char** argv) {
   certify::Options options;
   const auto files = parse_arguments(
       argc, argv, 2,
-      [&](const std::string& a, int&) {
+      [&](const std::string& a, int& i) {
         if (a == "--canonical") canonical = true;
         else if (a == "--all") options.all = true;
         else if (a == "--json") json = true;
+        else if (a == "--threads") options.threads = static_cast<unsigned>(parse_thread_count(next_arg(i, argc, argv)));
         else return false;
         return true;
       });
@@ -111,14 +112,16 @@ int command_certify(int argc, char** argv) {
 }
 
 const bool registered = register_command({"certify", command_certify,
-    "  certify POINTS SIMPLICES [--canonical] [--all] [--json]\n"
+    "  certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N]\n"
     "      Decides with exact predicates whether SIMPLICES (one simplex per line,\n"
     "      zero-based indices, any order; Qhull's 'qdelaunay Qt i' output; TetGen\n"
     "      .ele; or the binary .dwsx format) is a Delaunay triangulation of POINTS, and whether it is\n"
     "      the canonical one (CGAL's and dewall's). Exit 0 when it is Delaunay\n"
     "      (with --canonical: only when also canonical), 1 with the first\n"
     "      violation and its witness otherwise, 2 for unreadable input.\n"
-    "      --all lists every violation; --json prints a machine-readable report.\n"});
+    "      --all lists every violation; --json prints a machine-readable report.\n"
+    "      --threads N: at most N threads (default: the cores this process may\n"
+    "      use); the report is the same for every N.\n"});
 
 }  // namespace
 }  // namespace dewall::cli

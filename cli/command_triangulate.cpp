@@ -32,11 +32,7 @@ int command_triangulate(int argc, char** argv) {
   Options options;
   if (const auto e = parse_engine(engine)) options.engine = *e;
   else throw Usage_error("unknown engine " + io::quoted(engine) + " (" + engine_choices + ")");
-  if (threads) {
-    const long n = parse_long(*threads, "thread count");
-    if (n < 1 || n > 4096) throw Usage_error("--threads must be 1 to 4096, not " + *threads);
-    options.threads = static_cast<int>(n);
-  }
+  if (threads) options.threads = parse_thread_count(*threads);
   if (stream && !io::can_stream_simplices(output))
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
                       " (.ele and .vtk files start with the count of simplices)");

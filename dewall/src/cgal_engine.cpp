@@ -31,14 +31,15 @@ using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 constexpr std::size_t block_size = 8192;
 
 /// CGAL's triangulation of the points `ids` (point(i) gives the coordinates of
-/// point i), each finite cell handed to `emit(vertices, neighbors)`: vertices
+/// point i), `expect(count)` told the number of finite cells once built, then
+/// each finite cell handed to `emit(vertices, neighbors)`: vertices
 /// are ids; with `With_neighbors`, neighbors[i] numbers the cell across the
 /// face opposite vertex i in emission order (-1: infinite), else it is left
 /// unset (a whole triangulation needs no adjacency, and numbering the cells
 /// first is a pass over all of them). Cells come in CGAL's order.
 /// False when the points do not span E^D. \pre the ids' points are distinct.
-template <int D, bool With_neighbors, class Point_of, class Emit>
-bool cgal_cells(std::span<const Index> ids, Point_of&& point, Emit&& emit) {
+template <int D, bool With_neighbors, class Point_of, class Expect, class Emit>
+bool cgal_cells(std::span<const Index> ids, Point_of&& point, Expect&& expect, Emit&& emit) {
   // `info` is the per-cell number CGAL stores for us (-1 for infinite cells).
   auto list = [&](auto& dt, auto begin, auto end, auto&& info, auto&& vertex_id) {
     std::array<Index, D + 1> vertices;
@@ -83,6 +84,7 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Emit&& emit) {
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_2<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->face(); });
     if (dt.dimension() < 2) return false;
+    expect(dt.number_of_faces());
     list(dt, dt.all_faces_begin(), dt.all_faces_end(), [](auto c) -> std::int32_t& { return c->info(); },
          [](auto v) { return v->info(); });
   } else if constexpr (D == 3) {
@@ -98,6 +100,7 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Emit&& emit) {
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_3<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->cell(); });
     if (dt.dimension() < 3) return false;
+    expect(dt.number_of_finite_cells());
     list(dt, dt.all_cells_begin(), dt.all_cells_end(), [](auto c) -> std::int32_t& { return c->info(); },
          [](auto v) { return v->info(); });
   } else {
@@ -122,6 +125,7 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Emit&& emit) {
       hint = v->full_cell();
     }
     if (dt.current_dimension() < D) return false;
+    expect(dt.number_of_finite_full_cells());
     list(dt, dt.full_cells_begin(), dt.full_cells_end(), [](auto c) -> std::int32_t& { return c->data(); },
          [](auto v) { return v->data(); });
   }
@@ -153,6 +157,7 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Sim
   block.reserve(block_size);
   std::size_t count = 0;
   cgal_cells<D, false>(ids, [&](Index i) -> const std::array<double, D>& { return points[i].x; },
+                       [&](std::size_t cells) { output.expect(cells); },
                        [&](Simplex<D> s, const auto&) {
                          if (!flip) {
                            std::array<const kernel::Point_d<D>*, D + 1> p;
@@ -183,6 +188,7 @@ bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D
   const kernel::Fp_environment_guard guard;
   cells.clear();
   const bool spans = cgal_cells<D, true>(region, [&](Index i) -> const Coords<D>& { return coords[i]; },
+                                         [&](std::size_t count) { cells.reserve(count); },
                                          [&](const Simplex<D>& v, const std::array<std::int32_t, D + 1>& nb) {
                                            cells.push_back({v, nb});
                                          });

@@ -7,7 +7,9 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstdint>
 #include <cstring>
+#include <string>
 #include <istream>
 #include <ostream>
 #include <vector>
@@ -34,10 +36,54 @@ void check_writable(int dimension) {
                           std::to_string(dimension) + " (write a plain simplex list instead)");
 }
 
-void write_header_and_points(std::ostream& out, const Point_table& p, const char* title, Progress* progress) {
-  out << "# vtk DataFile Version 3.0\n" << title << "\nASCII\nDATASET UNSTRUCTURED_GRID\n";
+/// Legacy VTK's binary sections: big-endian values, whatever the host,
+/// buffered and written a chunk at a time.
+class Big_endian_writer {
+ public:
+  explicit Big_endian_writer(std::ostream& out) : out_(out) {}
+  ~Big_endian_writer() { flush(); }
+  void put(std::uint64_t bits, int bytes) {
+    for (int shift = 8 * (bytes - 1); shift >= 0; shift -= 8) buffer_.push_back(static_cast<char>(bits >> shift));
+    if (buffer_.size() >= (std::size_t{1} << 16)) flush();
+  }
+  void put_double(double v) { put(std::bit_cast<std::uint64_t>(v), 8); }
+  void put_int(std::uint32_t v) { put(v, 4); }
+  void flush() {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+  }
+
+ private:
+  std::ostream& out_;
+  std::string buffer_;
+};
+
+/// A cell list of `cells` cells of `k` vertices each must fit VTK's 32-bit
+/// ints (legacy files, version 3.0), and so must every point index.
+void check_legacy_ints(std::size_t points, std::size_t cells, std::size_t k) {
+  constexpr std::size_t largest = 2147483647;
+  if (points > largest || cells * (k + 1) > largest)
+    throw Vtk_unsupported("VTK output: " + std::to_string(cells) + " cells of " + std::to_string(points) +
+                          " points exceed legacy VTK's 32-bit ints (write .dwsx instead)");
+}
+
+void write_header_and_points(std::ostream& out, const Point_table& p, const char* title, Vtk_encoding encoding,
+                             Progress* progress) {
+  const bool binary = encoding == Vtk_encoding::binary;
+  out << "# vtk DataFile Version 3.0\n" << title << (binary ? "\nBINARY" : "\nASCII") << "\nDATASET UNSTRUCTURED_GRID\n";
   out << "POINTS " << p.size() << " double\n";
   const auto d = static_cast<std::size_t>(p.dimension);
+  if (binary) {
+    Big_endian_writer w(out);
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      for (std::size_t j = 0; j < d; ++j) w.put_double(p.coordinates[i * d + j]);
+      if (d == 2) w.put_double(0);
+      if (progress && (i & 0xffff) == 0) progress->advance_to(i);
+    }
+    w.flush();
+    out << '\n';
+    return;
+  }
   std::string line;
   for (std::size_t i = 0; i < p.size(); ++i) {
     line.clear();
@@ -50,6 +96,43 @@ void write_header_and_points(std::ostream& out, const Point_table& p, const char
     out << line;
     if (progress && (i & 0xffff) == 0) progress->advance_to(i);
   }
+}
+
+/// The CELLS and CELL_TYPES sections: `count` cells of `k` vertices, the
+/// vertices of cell c from `vertex(c, i)`, all of VTK type `type`;
+/// `progress_base` + c is reported.
+template <class Vertex>
+void write_cells(std::ostream& out, std::size_t count, std::size_t k, Vertex&& vertex, std::uint32_t type,
+                 Vtk_encoding encoding, Progress* progress, std::size_t progress_base) {
+  out << "CELLS " << count << ' ' << count * (k + 1) << '\n';
+  if (encoding == Vtk_encoding::binary) {
+    Big_endian_writer w(out);
+    for (std::size_t c = 0; c < count; ++c) {
+      w.put_int(static_cast<std::uint32_t>(k));
+      for (std::size_t i = 0; i < k; ++i) w.put_int(vertex(c, i));
+      if (progress && (c & 0xffff) == 0) progress->advance_to(progress_base + c);
+    }
+    w.flush();
+    out << "\nCELL_TYPES " << count << '\n';
+    for (std::size_t c = 0; c < count; ++c) w.put_int(type);
+    w.flush();
+    out << '\n';
+    return;
+  }
+  std::string line;
+  for (std::size_t c = 0; c < count; ++c) {
+    line.assign(std::to_string(k));
+    for (std::size_t i = 0; i < k; ++i) {
+      line += ' ';
+      line += std::to_string(vertex(c, i));
+    }
+    line += '\n';
+    out << line;
+    if (progress && (c & 0xffff) == 0) progress->advance_to(progress_base + c);
+  }
+  out << "CELL_TYPES " << count << '\n';
+  const std::string type_line = std::to_string(type) + '\n';
+  for (std::size_t c = 0; c < count; ++c) out << type_line;
 }
 
 std::string lower(std::string s) {
@@ -99,43 +182,29 @@ bool is_vtk_header(const std::string& first_line) {
 }
 
 void write_vtk_triangulation(std::ostream& out, const Point_table& points, const Simplex_table& t,
-                             Progress* progress) {
+                             Progress* progress, Vtk_encoding encoding) {
   check_writable(points.dimension);
   if (t.vertices_per_simplex != points.dimension + 1)
     throw Vtk_unsupported("VTK output: simplices of " + std::to_string(t.vertices_per_simplex) +
                           " vertices do not match points of dimension " + std::to_string(points.dimension));
-  if (progress) progress->phase("writing VTK", points.size() + t.size());
-  write_header_and_points(out, points, "dewall Delaunay triangulation", progress);
   const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  out << "CELLS " << t.size() << ' ' << t.size() * (k + 1) << '\n';
-  std::string line;
-  for (std::size_t s = 0; s < t.size(); ++s) {
-    line.assign(std::to_string(k));
-    for (std::size_t i = 0; i < k; ++i) {
-      line += ' ';
-      line += std::to_string(t.indices[s * k + i]);
-    }
-    line += '\n';
-    out << line;
-    if (progress && (s & 0xffff) == 0) progress->advance_to(points.size() + s);
-  }
-  out << "CELL_TYPES " << t.size() << '\n';
-  const char* type = points.dimension == 2 ? "5\n" : "10\n";  // VTK_TRIANGLE, VTK_TETRA
-  for (std::size_t s = 0; s < t.size(); ++s) out << type;
+  check_legacy_ints(points.size(), t.size(), k);
+  if (progress) progress->phase("writing VTK", points.size() + t.size());
+  write_header_and_points(out, points, "dewall Delaunay triangulation", encoding, progress);
+  const std::uint32_t type = points.dimension == 2 ? 5 : 10;  // VTK_TRIANGLE, VTK_TETRA
+  write_cells(out, t.size(), k, [&](std::size_t c, std::size_t i) { return t.indices[c * k + i]; }, type, encoding,
+              progress, points.size());
   if (progress) progress->finish();
 }
 
-void write_vtk_points(std::ostream& out, const Point_table& points, Progress* progress) {
+void write_vtk_points(std::ostream& out, const Point_table& points, Progress* progress, Vtk_encoding encoding) {
   check_writable(points.dimension);
+  check_legacy_ints(points.size(), points.size(), 1);
   if (progress) progress->phase("writing VTK", 2 * points.size());
-  write_header_and_points(out, points, "dewall points", progress);
-  out << "CELLS " << points.size() << ' ' << 2 * points.size() << '\n';
-  for (std::size_t i = 0; i < points.size(); ++i) out << "1 " << i << '\n';
-  out << "CELL_TYPES " << points.size() << '\n';
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    out << "1\n";  // VTK_VERTEX
-    if (progress && (i & 0xffff) == 0) progress->advance_to(points.size() + i);
-  }
+  write_header_and_points(out, points, "dewall points", encoding, progress);
+  // One VTK_VERTEX (1) per point.
+  write_cells(out, points.size(), 1, [](std::size_t c, std::size_t) { return static_cast<std::uint32_t>(c); }, 1,
+              encoding, progress, points.size());
   if (progress) progress->finish();
 }
 

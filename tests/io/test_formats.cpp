@@ -222,39 +222,54 @@ TEST_CASE("VTK: written triangulations read back, positively oriented", "[format
     } else {
       for (const auto& s : dewall::triangulate<3>(p3).simplices) simplices.indices.insert(simplices.indices.end(), s.begin(), s.end());
     }
-    std::ostringstream out;
-    write_vtk_triangulation(out, points, simplices);
-    const std::string text = out.str();
-    std::istringstream in(text);
-    CHECK(same_bits(read_vtk_points(in, "t.vtk"), points));
+    for (const Vtk_encoding encoding : {Vtk_encoding::binary, Vtk_encoding::ascii}) {
+      const bool binary = encoding == Vtk_encoding::binary;
+      INFO((binary ? "BINARY" : "ASCII"));
+      std::ostringstream out;
+      write_vtk_triangulation(out, points, simplices, nullptr, encoding);
+      const std::string text = out.str();
+      CHECK(text.find(binary ? "\nBINARY\n" : "\nASCII\n") != std::string::npos);
+      std::istringstream in(text);
+      CHECK(same_bits(read_vtk_points(in, "t.vtk"), points));
 
-    // The cells: count, sizes, types, and VTK's orientation (the fourth point of
-    // a tetrahedron on the positive side of the first three; counterclockwise
-    // triangles).
-    std::istringstream cells(text.substr(text.find("CELLS ")));
-    std::string keyword;
-    std::size_t count = 0, size = 0;
-    cells >> keyword >> count >> size;
-    REQUIRE(count == simplices.size());
-    REQUIRE(size == count * std::size_t(d + 2));
-    for (std::size_t s = 0; s < count; ++s) {
-      std::size_t k;
-      std::array<std::size_t, 4> v{};
-      cells >> k;
-      REQUIRE(k == std::size_t(d + 1));
-      for (std::size_t i = 0; i < k; ++i) cells >> v[i];
-      auto e = [&](int a, int j) { return p3[v[std::size_t(a)]][j] - p3[v[0]][j]; };
-      const double det = d == 2 ? e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0)
-                                : e(1, 0) * (e(2, 1) * e(3, 2) - e(2, 2) * e(3, 1)) -
-                                      e(1, 1) * (e(2, 0) * e(3, 2) - e(2, 2) * e(3, 0)) +
-                                      e(1, 2) * (e(2, 0) * e(3, 1) - e(2, 1) * e(3, 0));
-      REQUIRE(det > 0);
+      // The cells: count, sizes, types, and VTK's orientation (the fourth point
+      // of a tetrahedron on the positive side of the first three;
+      // counterclockwise triangles). Binary sections are big-endian 32-bit ints.
+      std::istringstream cells(text.substr(text.find("CELLS ")));
+      std::string keyword;
+      std::size_t count = 0, size = 0;
+      cells >> keyword >> count >> size;
+      cells.get();  // the newline before the data
+      const auto next_int = [&]() -> std::size_t {
+        if (!binary) {
+          std::size_t v = 0;
+          cells >> v;
+          return v;
+        }
+        unsigned char b[4] = {};
+        cells.read(reinterpret_cast<char*>(b), 4);
+        return (std::size_t{b[0]} << 24) | (std::size_t{b[1]} << 16) | (std::size_t{b[2]} << 8) | b[3];
+      };
+      REQUIRE(count == simplices.size());
+      REQUIRE(size == count * std::size_t(d + 2));
+      for (std::size_t s = 0; s < count; ++s) {
+        std::array<std::size_t, 4> v{};
+        REQUIRE(next_int() == std::size_t(d + 1));
+        for (int i = 0; i <= d; ++i) v[std::size_t(i)] = next_int();
+        for (int i = 0; i <= d; ++i) REQUIRE(v[std::size_t(i)] == simplices.indices[s * std::size_t(d + 1) + std::size_t(i)]);
+        auto e = [&](int a, int j) { return p3[v[std::size_t(a)]][j] - p3[v[0]][j]; };
+        const double det = d == 2 ? e(1, 0) * e(2, 1) - e(1, 1) * e(2, 0)
+                                  : e(1, 0) * (e(2, 1) * e(3, 2) - e(2, 2) * e(3, 1)) -
+                                        e(1, 1) * (e(2, 0) * e(3, 2) - e(2, 2) * e(3, 0)) +
+                                        e(1, 2) * (e(2, 0) * e(3, 1) - e(2, 1) * e(3, 0));
+        REQUIRE(det > 0);
+      }
+      cells >> keyword >> count;
+      CHECK(keyword == "CELL_TYPES");
+      CHECK(count == simplices.size());
+      cells.get();
+      for (std::size_t s = 0; s < count; ++s) REQUIRE(next_int() == std::size_t(d == 2 ? 5 : 10));
     }
-    cells >> keyword >> count;
-    CHECK(keyword == "CELL_TYPES");
-    int type;
-    cells >> type;
-    CHECK(type == (d == 2 ? 5 : 10));
   }
 }
 
@@ -264,12 +279,14 @@ TEST_CASE("VTK: points, binary legacy files, errors", "[formats]") {
     std::ostringstream out;
     CHECK_THROWS_AS(write_vtk_points(out, p), Vtk_unsupported);
   }
-  SECTION("a 3D point file round-trips") {
+  SECTION("a 3D point file round-trips, binary and ASCII") {
     const auto p = generate_points(Point_kind::sphere, 100, 3, 1);
-    std::ostringstream out;
-    write_vtk_points(out, p);
-    std::istringstream in(out.str());
-    CHECK(same_bits(read_vtk_points(in, "p.vtk"), p));
+    for (const Vtk_encoding encoding : {Vtk_encoding::binary, Vtk_encoding::ascii}) {
+      std::ostringstream out;
+      write_vtk_points(out, p, nullptr, encoding);
+      std::istringstream in(out.str());
+      CHECK(same_bits(read_vtk_points(in, "p.vtk"), p));
+    }
   }
   SECTION("BINARY legacy POINTS (big-endian float), as ParaView may save them") {
     std::string file = "# vtk DataFile Version 4.2\nsaved\nBINARY\nDATASET POLYDATA\nPOINTS 3 float\n";

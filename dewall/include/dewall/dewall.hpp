@@ -107,6 +107,9 @@ template <int D, class Sink>
 class Sink_output final : public Simplex_output<D> {
  public:
   explicit Sink_output(Sink& sink) : sink_(sink) {}
+  void expect(std::size_t count) override {
+    if constexpr (requires { sink_.reserve(count); }) sink_.reserve(count);
+  }
   void put(std::span<const Built_simplex<D>> block) override {
     for (const Built_simplex<D>& s : block) {
       if constexpr (std::is_invocable_v<Sink&, const Simplex<D>&, int>) sink_(s.vertices, static_cast<int>(s.wall_level));
@@ -135,7 +138,9 @@ class Sink_output final : public Simplex_output<D> {
 /// progress); the set is the same, and so is the order with one thread
 /// (Options::threads = 1). The sink is never called concurrently, but with
 /// more threads it is called from several, in an order that depends on
-/// their timing.
+/// their timing. A sink with a member reserve(n) is told the number of
+/// simplices before the first one when that is known (collected output, and
+/// the incremental engine's).
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D. An exception from the sink ends
 /// the triangulation and is passed on.
@@ -161,8 +166,13 @@ struct Triangulation {
 template <kernel::DelaunayKernel K>
 Triangulation<K::dimension> triangulate(std::span<const typename K::Point_d> points, const Options& options = {},
                                         const K& k = {}) {
+  struct Append {
+    std::vector<Simplex<K::dimension>>& simplices;
+    void reserve(std::size_t n) { simplices.reserve(simplices.size() + n); }
+    void operator()(const Simplex<K::dimension>& s) { simplices.push_back(s); }
+  };
   Triangulation<K::dimension> t;
-  t.statistics = triangulate_to<K>(points, [&](const Simplex<K::dimension>& s) { t.simplices.push_back(s); }, options, k);
+  t.statistics = triangulate_to<K>(points, Append{t.simplices}, options, k);
   return t;
 }
 

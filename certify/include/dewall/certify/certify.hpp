@@ -67,6 +67,9 @@
 #include <thread>
 #include <type_traits>
 #include <vector>
+#ifdef __linux__
+#include <sched.h>
+#endif
 
 #include "dewall/certify/face_grouping.hpp"
 #include "dewall/certify/report.hpp"
@@ -331,13 +334,23 @@ class Certifier {
     }
   }
 
+  /// The cores this process may run on: its affinity mask (taskset, a
+  /// container's cpuset), which hardware_concurrency ignores.
+  static unsigned available_cores() {
+#ifdef __linux__
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0) return std::max(1, CPU_COUNT(&set));
+#endif
+    return std::max(1u, std::thread::hardware_concurrency());
+  }
+
   /// Calls f(0) … f(count − 1), on up to Options::threads threads (0: all
   /// cores), then rethrows the exception of the first call that threw (out
   /// of memory, say). Each worker sets the floating-point environment the
   /// kernel's filters assume (floating_point.hpp).
   template <class F>
   void for_each_parallel(std::size_t count, F&& f) const {
-    unsigned threads = options_.threads ? options_.threads : std::max(1u, std::thread::hardware_concurrency());
+    unsigned threads = options_.threads ? options_.threads : available_cores();
     threads = static_cast<unsigned>(std::min<std::size_t>(threads, count));
     std::vector<std::exception_ptr> errors(count);
     std::atomic<std::size_t> next{0};

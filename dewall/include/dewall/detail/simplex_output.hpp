@@ -4,6 +4,7 @@
 // per task is in memory, and the order depends on the threads' timing.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <mutex>
 #include <span>
@@ -27,6 +28,9 @@ struct Built_simplex {
 template <int D>
 class Simplex_output {
  public:
+  /// The number of simplices about to be put, when it is known before the
+  /// first put (collected output): a receiver may reserve room.
+  virtual void expect(std::size_t /*count*/) {}
   virtual void put(std::span<const Built_simplex<D>> block) = 0;
 
  protected:
@@ -111,6 +115,7 @@ class Built_simplices {
   /// Streaming: flush().
   void hand_to(Simplex_output<D>& out) {
     if (stream_) return flush();
+    out.expect(size_);
     for (auto& b : blocks_) {
       out.put(b);
       std::vector<Built_simplex<D>>().swap(b);
