@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -168,6 +169,15 @@ TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
     REQUIRE(cli("triangulate p.dwpt --stream -o all_cores.dwsx --stats").status == 0);
     CHECK(slurp(cli.path("all_cores.dwsx")).size() == slurp(cli.path("collected.dwsx")).size());
     CHECK(cli("certify p.dwpt all_cores.dwsx").status == 0);
+    // The same report (but its timing) on one thread and on three.
+    const auto report = [&](const char* threads) {
+      const auto r = cli(std::string("certify p.dwpt all_cores.dwsx --json --threads ") + threads);
+      CHECK(r.status == 0);
+      return std::regex_replace(r.out, std::regex("\"seconds\":[0-9.e-]+"), "");
+    };
+    CHECK(report("1") == report("3"));
+    CHECK(report("1").find("\"canonical\":true") != std::string::npos);
+    CHECK(cli("certify p.dwpt all_cores.dwsx --threads 0").status == 2);
     // The plain list on standard output, the same lines in the same order.
     const auto plain = cli("triangulate p.dwpt --threads 1");
     const auto plain_streamed = cli("triangulate p.dwpt --threads 1 --stream");
