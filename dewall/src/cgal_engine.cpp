@@ -30,33 +30,40 @@ using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 /// Simplices per Simplex_output::put.
 constexpr std::size_t block_size = 8192;
 
-/// CGAL's triangulation of the points `ids` (point(i) gives the coordinates of
-/// point i), `expect(count)` told the number of finite cells once built, then
-/// each finite cell handed to `emit(vertices, neighbors)`: vertices
-/// are ids; with `With_neighbors`, neighbors[i] numbers the cell across the
-/// face opposite vertex i in emission order (-1: infinite), else it is left
-/// unset (a whole triangulation needs no adjacency, and numbering the cells
-/// first is a pass over all of them). Cells come in CGAL's order.
-/// False when the points do not span E^D. \pre the ids' points are distinct.
-template <int D, bool With_neighbors, class Point_of, class Expect, class Emit>
-bool cgal_cells(std::span<const Index> ids, Point_of&& point, Expect&& expect, Emit&& emit) {
-  // `info` is the per-cell number CGAL stores for us (-1 for infinite cells).
-  auto list = [&](auto& dt, auto begin, auto end, auto&& info, auto&& vertex_id) {
-    std::array<Index, D + 1> vertices;
-    std::array<std::int32_t, D + 1> neighbors;
-    if constexpr (With_neighbors) {
-      std::int32_t k = 0;
-      for (auto c = begin; c != end; ++c) info(c) = dt.is_infinite(c) ? -1 : k++;
+/// One of CGAL's triangulations seen alike in every dimension: its cells from
+/// begin to end (infinite ones included; `finite_cells` finite), each cell's
+/// int32 info (ours to use), its vertices as ids.
+template <int D, class Dt, class Iterator>
+struct Cgal_view {
+  Dt& dt;
+  Iterator begin, end;
+  std::size_t finite_cells;
+
+  static std::int32_t& info(auto c) {
+    if constexpr (D <= 3) return c->info();
+    else return c->data();
+  }
+  static Simplex<D> vertices(auto c) {
+    Simplex<D> s;
+    for (int i = 0; i <= D; ++i) {
+      if constexpr (D <= 3) s[static_cast<std::size_t>(i)] = c->vertex(i)->info();
+      else s[static_cast<std::size_t>(i)] = c->vertex(i)->data();
     }
-    for (auto c = begin; c != end; ++c) {
-      if (dt.is_infinite(c)) continue;
-      for (int i = 0; i <= D; ++i) {
-        vertices[static_cast<std::size_t>(i)] = vertex_id(c->vertex(i));
-        if constexpr (With_neighbors) neighbors[static_cast<std::size_t>(i)] = info(c->neighbor(i));
-      }
-      emit(vertices, neighbors);
-    }
-  };
+    return s;
+  }
+};
+
+template <int D, class Dt, class Iterator>
+Cgal_view<D, Dt, Iterator> make_view(Dt& dt, Iterator begin, Iterator end, std::size_t finite_cells) {
+  return {dt, begin, end, finite_cells};
+}
+
+/// CGAL's triangulation of the points `ids` (point(i) gives the coordinates
+/// of point i), passed to `use(view)` once built; a Cgal_view of it lets the
+/// code below walk its cells alike in every dimension. False, having called
+/// nothing, when the points do not span E^D. \pre the ids' points are distinct.
+template <int D, class Point_of, class Use>
+bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&& use) {
   // 2D and 3D: the (point, id) pairs are spatially sorted themselves and
   // inserted in that order with a hint, which is what CGAL's insert of a range
   // with info does, minus its sort of indices into the points (a random read
@@ -83,10 +90,9 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Expect&& expect, E
     CGAL::Delaunay_triangulation_2<Epick, Tds> dt;
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_2<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->face(); });
+    std::vector<Item>().swap(items);
     if (dt.dimension() < 2) return false;
-    expect(dt.number_of_faces());
-    list(dt, dt.all_faces_begin(), dt.all_faces_end(), [](auto c) -> std::int32_t& { return c->info(); },
-         [](auto v) { return v->info(); });
+    use(make_view<D>(dt, dt.all_faces_begin(), dt.all_faces_end(), dt.number_of_faces()));
   } else if constexpr (D == 3) {
     using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, Epick>;
     using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int32_t, Epick,
@@ -99,10 +105,9 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Expect&& expect, E
     CGAL::Delaunay_triangulation_3<Epick, Tds> dt;
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_3<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->cell(); });
+    std::vector<Item>().swap(items);
     if (dt.dimension() < 3) return false;
-    expect(dt.number_of_finite_cells());
-    list(dt, dt.all_cells_begin(), dt.all_cells_end(), [](auto c) -> std::int32_t& { return c->info(); },
-         [](auto v) { return v->info(); });
+    use(make_view<D>(dt, dt.all_cells_begin(), dt.all_cells_end(), dt.number_of_finite_cells()));
   } else {
     using K = CGAL::Epick_d<CGAL::Dimension_tag<D>>;
     using Vertex = CGAL::Triangulation_vertex<K, Index>;
@@ -125,11 +130,89 @@ bool cgal_cells(std::span<const Index> ids, Point_of&& point, Expect&& expect, E
       hint = v->full_cell();
     }
     if (dt.current_dimension() < D) return false;
-    expect(dt.number_of_finite_full_cells());
-    list(dt, dt.full_cells_begin(), dt.full_cells_end(), [](auto c) -> std::int32_t& { return c->data(); },
-         [](auto v) { return v->data(); });
+    use(make_view<D>(dt, dt.full_cells_begin(), dt.full_cells_end(), dt.number_of_finite_full_cells()));
   }
   return true;
+}
+
+/// Whether CGAL's cells are negatively oriented: in 2D and 3D never (its
+/// validity invariant); its dD cells share one orientation, tested on the
+/// first finite cell with our exact orientation_d_object. The engine tests
+/// check every simplex. (Testing each cell cost 3 % of the run at 10^6 points.)
+template <int D, class View, class Point_of>
+bool cells_negative(const View& view, Point_of&& point) {
+  if constexpr (D <= 3) {
+    return false;
+  } else {
+    for (auto c = view.begin; c != view.end; ++c) {
+      if (view.dt.is_infinite(c)) continue;
+      std::array<kernel::Point_d<D>, D + 1> p;
+      std::array<const kernel::Point_d<D>*, D + 1> refs;
+      const Simplex<D> s = view.vertices(c);
+      for (int i = 0; i <= D; ++i) {
+        p[static_cast<std::size_t>(i)].x = point(s[static_cast<std::size_t>(i)]);
+        refs[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
+      }
+      return kernel::Filtered_kernel_d<D>{}.orientation_d_object()(refs) == kernel::NEGATIVE;
+    }
+    return false;
+  }
+}
+
+/// Region_filter's walk (region.hpp) over CGAL's cells, each cell's state in
+/// its info; `flip`: the cells are negatively oriented.
+template <int D, class View>
+void filter_region(const View& view, bool flip, Region_filter<D>& filter) {
+  // NEAR_OPEN: a neighbour is infinite or dropped (only such a cell, when
+  // kept, reads its neighbours' states: they are scattered in memory).
+  enum : std::int32_t { UNTESTED = 0, KEPT = 1, DROPPED = 2, INFINITE = 3, STATE = 3, NEAR_OPEN = 4 };
+  auto oriented = [&](auto c) {
+    Simplex<D> s = View::vertices(c);
+    if (flip) std::swap(s[0], s[1]);
+    return s;
+  };
+  filter.begin(view.finite_cells);
+  using Handle = decltype(view.begin->neighbor(0));
+  std::vector<Handle> infinite, hull, queue;
+  for (auto c = view.begin; c != view.end; ++c) {
+    const bool inf = view.dt.is_infinite(c);
+    View::info(c) = inf ? INFINITE : UNTESTED;
+    if (inf) infinite.push_back(c);
+  }
+  for (const Handle c : infinite)
+    for (int i = 0; i <= D; ++i) {
+      View::info(c->neighbor(i)) |= NEAR_OPEN;
+      if (c->vertex(i) == view.dt.infinite_vertex()) hull.push_back(c->neighbor(i));
+    }
+  auto test = [&](Handle c) {
+    std::int32_t& state = View::info(c);
+    if ((state & STATE) != UNTESTED) return;
+    if (filter.empty_of_others(oriented(c))) {
+      state |= KEPT;
+    } else {
+      state |= DROPPED;
+      queue.push_back(c);
+      for (int i = 0; i <= D; ++i) View::info(c->neighbor(i)) |= NEAR_OPEN;
+    }
+  };
+  for (const Handle c : hull) test(c);
+  while (!queue.empty()) {
+    const Handle c = queue.back();
+    queue.pop_back();
+    for (int i = 0; i <= D; ++i) test(c->neighbor(i));
+  }
+  for (auto c = view.begin; c != view.end; ++c) {
+    const std::int32_t state = View::info(c);
+    if ((state & STATE) == INFINITE || (state & STATE) == DROPPED) continue;
+    unsigned open = 0;
+    if (state & NEAR_OPEN)
+      for (int i = 0; i <= D; ++i) {
+        const std::int32_t across = View::info(c->neighbor(i)) & STATE;
+        if (across == INFINITE || across == DROPPED) open |= 1u << i;
+      }
+    if (flip) open = (open & ~3u) | (open >> 1 & 1u) | (open << 1 & 2u);
+    filter.keep(oriented(c), open);
+  }
 }
 
 }  // namespace
@@ -148,30 +231,25 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Sim
 
   const std::vector<Index> ids(distinct.begin(), distinct.end());
   // Positively oriented, as DeWall writes them (TetGen .ele expects it).
-  // CGAL's 2D faces and 3D cells are (its validity invariant); its dD cells
-  // share one orientation, tested on the first. The engine tests check every
-  // simplex. (Testing each cell cost 3 % of the run at 10^6 points.)
-  std::optional<bool> flip;
-  if constexpr (D <= 3) flip = false;
+  auto point = [&](Index i) -> const std::array<double, D>& { return points[i].x; };
   std::vector<Built_simplex<D>> block;
   block.reserve(block_size);
   std::size_t count = 0;
-  cgal_cells<D, false>(ids, [&](Index i) -> const std::array<double, D>& { return points[i].x; },
-                       [&](std::size_t cells) { output.expect(cells); },
-                       [&](Simplex<D> s, const auto&) {
-                         if (!flip) {
-                           std::array<const kernel::Point_d<D>*, D + 1> p;
-                           for (int i = 0; i <= D; ++i) p[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
-                           flip = K{}.orientation_d_object()(p) == kernel::NEGATIVE;
-                         }
-                         if (*flip) std::swap(s[0], s[1]);
-                         block.push_back({s, 0});
-                         if (block.size() == block_size) {
-                           output.put(block);
-                           count += block.size();
-                           block.clear();
-                         }
-                       });
+  with_cgal_triangulation<D>(ids, point, [&](const auto& view) {
+    output.expect(view.finite_cells);
+    const bool flip = cells_negative<D>(view, point);
+    for (auto c = view.begin; c != view.end; ++c) {
+      if (view.dt.is_infinite(c)) continue;
+      Simplex<D> s = view.vertices(c);
+      if (flip) std::swap(s[0], s[1]);
+      block.push_back({s, 0});
+      if (block.size() == block_size) {
+        output.put(block);
+        count += block.size();
+        block.clear();
+      }
+    }
+  });
   output.put(block);
   count += block.size();
   Statistics st;
@@ -183,41 +261,17 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Sim
 }
 
 template <int D>
-bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords,
-                       std::vector<Region_cell<D>>& cells) {
+bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords, Region_filter<D>& filter) {
   const kernel::Fp_environment_guard guard;
-  cells.clear();
-  const bool spans = cgal_cells<D, true>(region, [&](Index i) -> const Coords<D>& { return coords[i]; },
-                                         [&](std::size_t count) { cells.reserve(count); },
-                                         [&](const Simplex<D>& v, const std::array<std::int32_t, D + 1>& nb) {
-                                           cells.push_back({v, nb});
-                                         });
-  if (!spans) cells.clear();
-  if constexpr (D > 3) {
-    // CGAL's dD cells all have one orientation, not necessarily positive.
-    if (spans && !cells.empty()) {
-      using K = kernel::Filtered_kernel_d<D>;
-      std::array<kernel::Point_d<D>, D + 1> p;
-      std::array<const kernel::Point_d<D>*, D + 1> refs;
-      for (int i = 0; i <= D; ++i) {
-        p[static_cast<std::size_t>(i)].x = coords[cells[0].vertices[static_cast<std::size_t>(i)]];
-        refs[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
-      }
-      if (K{}.orientation_d_object()(refs) == kernel::NEGATIVE)
-        for (Region_cell<D>& c : cells) {
-          std::swap(c.vertices[0], c.vertices[1]);
-          std::swap(c.neighbor[0], c.neighbor[1]);
-        }
-    }
-  }
-  return spans;
+  auto point = [&](Index i) -> const Coords<D>& { return coords[i]; };
+  return with_cgal_triangulation<D>(region, point,
+                                    [&](const auto& view) { filter_region<D>(view, cells_negative<D>(view, point), filter); });
 }
 
 #define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \
   template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,         \
                                                const std::vector<std::size_t>*);                                \
-  template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,                   \
-                                     std::vector<Region_cell<D>>&);
+  template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&, Region_filter<D>&);
 DEWALL_INSTANTIATE_CGAL_ENGINE(2)
 DEWALL_INSTANTIATE_CGAL_ENGINE(3)
 DEWALL_INSTANTIATE_CGAL_ENGINE(4)

@@ -25,9 +25,8 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Sim
                                  const std::vector<std::size_t>* distinct = nullptr);
 
 /// The region triangulator of Engine::hybrid (region.hpp): CGAL's
-/// triangulation of the points `region`, positively oriented cells.
+/// triangulation of the points `region`, walked by `filter` in place.
 template <int D>
-bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords,
-                       std::vector<Region_cell<D>>& cells);
+bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords, Region_filter<D>& filter);
 
 }  // namespace dewall::detail

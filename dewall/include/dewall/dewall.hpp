@@ -26,6 +26,7 @@
 #pragma once
 
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <array>
 #include <cstdint>
@@ -89,16 +90,27 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
   }
 }
 
-/// run_engine in an arena of Options::threads threads, when that is given.
+/// run_engine in an arena of Options::threads threads, when that is given,
+/// and in a task group context of its own: a caller's TBB work being
+/// cancelled must not reach our tasks (a parallel_invoke in a cancelled
+/// context returns without running them, and the triangulation would have
+/// holes); it then waits for the triangulation to finish.
 template <kernel::DelaunayKernel K>
 Statistics run_triangulation(std::span<const typename K::Point_d> points, const Options& options, const K& k,
                              Simplex_output<K::dimension>& output) {
   if (options.threads < 0)
     throw std::invalid_argument("dewall: Options::threads must be 0 (all cores) or positive, not " +
                                 std::to_string(options.threads));
-  if (options.threads == 0) return run_engine<K>(points, options, k, output);
+  auto isolated = [&] {
+    tbb::task_group_context context(tbb::task_group_context::isolated);
+    tbb::task_group group(context);
+    Statistics statistics;
+    group.run_and_wait([&] { statistics = run_engine<K>(points, options, k, output); });
+    return statistics;
+  };
+  if (options.threads == 0) return isolated();
   tbb::task_arena arena(options.threads);
-  return arena.execute([&] { return run_engine<K>(points, options, k, output); });
+  return arena.execute(isolated);
 }
 
 /// Hands each simplex of the engine's blocks to a caller's sink: sink(simplex),

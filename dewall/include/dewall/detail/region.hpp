@@ -30,22 +30,41 @@
 
 namespace dewall::detail {
 
-/// A simplex of a region's triangulation DT(R), positively oriented, with the
-/// simplex across the face opposite each vertex (an index into the same list),
-/// or -1 where that face is on the region's convex hull.
+/// What a region's triangulator asks of the recursion (wall.hpp) while it
+/// walks DT(R), which it builds and keeps itself: copying DT(R) out as a
+/// list of cells with their neighbours cost a tenth of the run and a third of
+/// a region's memory (uniform 10^6 points: 36 of about 900 bytes per point).
 template <int D>
-struct Region_cell {
-  Simplex<D> vertices;
-  std::array<std::int32_t, D + 1> neighbor;
+class Region_filter {
+ public:
+  /// DT(R) has `cells` simplices; called once, before the others.
+  virtual void begin(std::size_t cells) = 0;
+  /// Whether the sphere of `cell`, a simplex of DT(R) (positively oriented),
+  /// holds no point outside R. Which cells are asked: those on the hull of R,
+  /// and every neighbour of a cell found not empty; the others are empty
+  /// untested. The cells holding one outside point q form a connected set
+  /// that reaches the hull (Bowyer–Watson: the cavity q would open in DT(R)
+  /// is connected, and q lies outside the convex hull of R, so the cavity
+  /// includes hull facets), so that walk meets all of them. On 10^5 uniform
+  /// points it asks 1 cell in ~N instead of all.
+  virtual bool empty_of_others(const Simplex<D>& cell) = 0;
+  /// A simplex of DT(R) whose sphere holds no point outside R, so of DT(P)
+  /// (positively oriented), in DT(R)'s order. Bit i of `open` is set when the
+  /// face opposite vertex i is on no other such simplex (on the hull of R, or
+  /// its neighbour there was not empty).
+  virtual void keep(const Simplex<D>& cell, unsigned open) = 0;
+
+ protected:
+  ~Region_filter() = default;
 };
 
 /// Builds DT(R) of the points `region` (local indices into `coords`) with the
-/// perturbation of the kernel, replacing `cells`. Returns false when the points
-/// do not span E^D (the region is then left to DeWall).
+/// perturbation of the kernel and passes it through `filter`. Returns false,
+/// having called nothing, when the points do not span E^D (the region is then
+/// left to DeWall).
 template <int D>
-using Region_triangulator =
-    std::function<bool(std::span<const Index> region, const std::vector<Coords<D>>& coords,
-                       std::vector<Region_cell<D>>& cells)>;
+using Region_triangulator = std::function<bool(std::span<const Index> region, const std::vector<Coords<D>>& coords,
+                                               Region_filter<D>& filter)>;
 
 /// The open box that every point of a region lies in and every point outside
 /// it does not: the walls above the region cut it along coordinate planes

@@ -1,7 +1,9 @@
 // Where an engine's simplices go. Either collected in output order and handed
 // over once the triangulation is complete (the same order for every number of
 // threads), or streamed as they are built (Options::stream): then only a block
-// per task is in memory, and the order depends on the threads' timing.
+// per task is in memory (and, with Engine::automatic, what is held until the
+// first region is kept), and with several threads the order depends on their
+// timing.
 #pragma once
 
 #include <cstddef>
@@ -10,6 +12,8 @@
 #include <span>
 #include <utility>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "dewall/detail/face.hpp"
 
@@ -23,8 +27,8 @@ struct Built_simplex {
   std::uint8_t wall_level;
 };
 
-/// The receiver of an engine's simplices, block by block, in output order.
-/// Never called concurrently.
+/// The receiver of an engine's simplices, block by block: in output order when
+/// collected or on one thread. Never called concurrently.
 template <int D>
 class Simplex_output {
  public:
@@ -40,31 +44,57 @@ class Simplex_output {
 /// The simplices of parallel tasks, passed on to one Simplex_output under a
 /// lock. A held stream keeps them until release(): Engine::automatic may still
 /// hand over to the incremental engine, and what was passed on could not be
-/// taken back (search_budget.hpp, Handover_decision).
+/// taken back (search_budget.hpp, Handover_decision). Held simplices are kept
+/// in the blocks they came in (no growing array whose reallocation doubles
+/// the peak).
 template <int D>
 class Simplex_stream {
  public:
   Simplex_stream(Simplex_output<D>& out, bool held) : out_(out), holding_(held) {}
 
+  /// \throws what the output throws; once it has thrown, Stream_failed for
+  /// every later block, so that the other tasks stop at their next block
+  /// instead of triangulating on for an output that is gone.
   void put(std::span<const Built_simplex<D>> block) {
     const std::lock_guard lock(mutex_);
-    if (holding_) held_.insert(held_.end(), block.begin(), block.end());
-    else out_.put(block);
+    if (failed_) throw Stream_failed{};
+    if (holding_) held_.emplace_back(block.begin(), block.end());
+    else pass_on(block);
   }
   /// Passes on what was held, and from now on every block at once.
   void release() {
     const std::lock_guard lock(mutex_);
-    if (!holding_) return;
+    if (!holding_ || failed_) return;
     holding_ = false;
-    out_.put(held_);
-    std::vector<Built_simplex<D>>().swap(held_);
+    for (auto& b : held_) {
+      pass_on(b);
+      std::vector<Built_simplex<D>>().swap(b);
+    }
+    held_.clear();
   }
 
+  /// Thrown to the tasks still running after the output failed (the first
+  /// exception is the one the caller sees).
+  struct Stream_failed {};
+
  private:
+  void pass_on(std::span<const Built_simplex<D>> block) {
+    try {
+      // The caller's output may itself run TBB work; isolated, a thread
+      // waiting in it cannot pick up one of our tasks, which would call
+      // put() again on this thread and lock the mutex it holds.
+      tbb::this_task_arena::isolate([&] { out_.put(block); });
+    } catch (...) {
+      failed_ = true;
+      throw;
+    }
+  }
+
   Simplex_output<D>& out_;
   std::mutex mutex_;
   bool holding_;
-  std::vector<Built_simplex<D>> held_;
+  bool failed_ = false;
+  std::vector<std::vector<Built_simplex<D>>> held_;
 };
 
 /// A task's built simplices. Collecting: in output order, in blocks of fixed

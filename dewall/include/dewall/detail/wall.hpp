@@ -205,65 +205,49 @@ class Wall_builder {
                           Simplex_search<K>& search, Wall_stats& stats) {
     // Known not to span E^D without building the triangulator's lower-dimensional one.
     if (on_one_axis_plane(points)) return false;
-    std::vector<Region_cell<D>> cells;
-    if (!(*regions_)(points, ps_.coords, cells)) return false;
-    // Which cells hold a point of another region in their sphere. Those of
-    // one outside point q form a connected set that reaches the region's hull
-    // (Bowyer–Watson: the cavity q would open in DT(R) is connected, and q
-    // lies outside the convex hull of R, so the cavity includes hull
-    // facets). So a search from the hull cells through the cells found
-    // holding a point meets all of them; a cell it does not reach is kept
-    // untested. On 10^5 uniform points this tests 1 cell in ~N instead of all.
-    enum : char { UNTESTED, KEPT, DROPPED };
-    std::vector<char> state(cells.size(), UNTESTED);
-    std::vector<std::int32_t> queue;
     // The automatic engine hands over when a region saves no search: when
     // most of its cells' spheres leave it, each of those needs the exact
     // search, and the region costs CGAL's work plus DeWall's. Measured share of
     // such cells per region (10^5 points): two layers 62 %; uniform, ball,
     // bubbles, eight layers 3–7 %; 2D 1 %. Decided as soon as the share passes
     // a quarter (the count only grows, so the decision is the same).
-    const bool may_hand_over = search.charges_budget() && cells.size() >= min_cells_for_handover;
-    std::size_t sphere_tests = 0;
-    auto test = [&](std::int32_t c) {
-      char& st = state[static_cast<std::size_t>(c)];
-      if (st != UNTESTED) return;
-      const Simplex<D>& s = cells[static_cast<std::size_t>(c)].vertices;
-      const Simplex_sphere<D> sphere = search.sphere_of(s);
-      const Ball_box<D>& ball = sphere.enclosing_box();
-      // A ball strictly inside the region's box holds no outside point;
-      // otherwise the exact test against every point near it.
-      bool empty = ball.bounded && bounds.strictly_contains(ball.lo, ball.hi);
-      // (Charged like a search: on cospherical input these tests look at
-      // every point, as the walls' searches do.)
-      if (!empty) {
-        empty = search.is_empty_sphere(s, sphere);
-        if (may_hand_over && 4 * ++sphere_tests > cells.size()) search.hand_over();
+    struct Filter final : Region_filter<D> {
+      Wall_builder& builder;
+      const Region_bounds<D>& bounds;
+      Active_face_list<D>& afl;
+      Built_simplices<D>& out;
+      Simplex_search<K>& search;
+      std::size_t depth;
+      std::size_t cells = 0, sphere_tests = 0;
+      bool may_hand_over = false;
+
+      Filter(Wall_builder& b, const Region_bounds<D>& bo, Active_face_list<D>& a, Built_simplices<D>& o,
+             Simplex_search<K>& s, std::size_t d)
+          : builder(b), bounds(bo), afl(a), out(o), search(s), depth(d) {}
+      void begin(std::size_t count) override {
+        cells = count;
+        may_hand_over = search.charges_budget() && count >= min_cells_for_handover;
       }
-      st = empty ? KEPT : DROPPED;
-      if (!empty) queue.push_back(c);
-    };
-    for (std::size_t c = 0; c < cells.size(); ++c)
-      for (std::int32_t n : cells[c].neighbor)
-        if (n < 0) {
-          test(static_cast<std::int32_t>(c));
-          break;
-        }
-    while (!queue.empty()) {
-      const std::int32_t c = queue.back();
-      queue.pop_back();
-      for (std::int32_t n : cells[static_cast<std::size_t>(c)].neighbor)
-        if (n >= 0) test(n);
-    }
-    auto kept = [&](std::int32_t c) { return state[static_cast<std::size_t>(c)] != DROPPED; };
+      bool empty_of_others(const Simplex<D>& s) override {
+        const Simplex_sphere<D> sphere = search.sphere_of(s);
+        const Ball_box<D>& ball = sphere.enclosing_box();
+        // A ball strictly inside the region's box holds no outside point;
+        // otherwise the exact test against every point near it. (Charged like
+        // a search: on cospherical input these tests look at every point, as
+        // the walls' searches do.)
+        if (ball.bounded && bounds.strictly_contains(ball.lo, ball.hi)) return true;
+        const bool empty = search.is_empty_sphere(s, sphere);
+        if (may_hand_over && 4 * ++sphere_tests > cells) search.hand_over();
+        return empty;
+      }
+      void keep(const Simplex<D>& s, unsigned open) override {
+        builder.emit(out, s, depth);
+        for (int i = 0; i <= D; ++i)
+          if (open >> i & 1u) afl.update(opposite_face<D>(s, i));
+      }
+    } filter(*this, bounds, afl, out, search, depth);
     const std::size_t before = out.size();
-    for (std::size_t c = 0; c < cells.size(); ++c) {
-      if (!kept(static_cast<std::int32_t>(c))) continue;
-      const Region_cell<D>& cell = cells[c];
-      emit(out, cell.vertices, depth);
-      for (int i = 0; i <= D; ++i)
-        if (cell.neighbor[i] < 0 || !kept(cell.neighbor[i])) afl.update(opposite_face<D>(cell.vertices, i));
-    }
+    if (!(*regions_)(points, ps_.coords, filter)) return false;
     while (!afl.empty()) open_faces.push_back(afl.pop());
     stats.simplices += out.size() - before;
     stats.region_simplices += out.size() - before;
