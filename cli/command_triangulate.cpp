@@ -1,4 +1,5 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stream] [--stats] [--quiet]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stream]
+//                    [--region-points N] [--stats] [--quiet]
 #include <cstdio>
 #include <optional>
 
@@ -13,7 +14,8 @@ namespace dewall::cli {
 int command_triangulate(int argc, char** argv) {
   std::string output = "-";
   std::string engine = "auto";
-  std::optional<std::string> threads;  // absent: all cores
+  std::optional<std::string> threads;        // absent: all cores
+  std::optional<std::string> region_points;  // absent: chosen by n
   bool stats = false, quiet = false, stream = false;
   const auto operands = parse_arguments(
       argc, argv, 1,
@@ -23,6 +25,7 @@ int command_triangulate(int argc, char** argv) {
         else if (a == "--threads") threads = next_arg(i, argc, argv);
         else if (a == "--stats") stats = true;
         else if (a == "--stream") stream = true;
+        else if (a == "--region-points") region_points = next_arg(i, argc, argv);
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -33,6 +36,11 @@ int command_triangulate(int argc, char** argv) {
   if (const auto e = parse_engine(engine)) options.engine = *e;
   else throw Usage_error("unknown engine " + io::quoted(engine) + " (" + engine_choices + ")");
   if (threads) options.threads = parse_thread_count(*threads);
+  if (region_points) {
+    const long n = parse_long(*region_points, "region size");
+    if (n < 1 || n > 0xFFFFFFFFL) throw Usage_error("--region-points must be 1 to 4294967295, not " + *region_points);
+    options.region_points = static_cast<std::size_t>(n);
+  }
   if (stream && !io::can_stream_simplices(output))
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
                       " (.ele and .vtk files start with the count of simplices)");
@@ -69,7 +77,7 @@ int command_triangulate(int argc, char** argv) {
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
     "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N]\n"
-    "              [--stream] [--stats] [--quiet]\n"
+    "              [--stream] [--region-points N] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -96,6 +104,8 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      auto then decides once, at the first region, whether to hand over to\n"
     "      CGAL (whose triangulation is whole in memory). To a pipe, a .dwsx\n"
     "      stream leaves its count 'unknown' (readers take what follows).\n"
+    "      --region-points N: regions of at most N points instead (hybrid and\n"
+    "      auto; the same simplices; the order, speed and memory change with N).\n"
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "cli.hpp"
+#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/quote.hpp"
 
@@ -50,6 +51,7 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  dewall::io::restart_with_huge_pages(argv);
   try {
     return run(argc, argv);
   } catch (const dewall::cli::Usage_error& e) {

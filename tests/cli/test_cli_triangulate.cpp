@@ -157,6 +157,21 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
   }
 }
 
+TEST_CASE("command line: the restart for huge pages keeps the arguments and standard input", "[cli]") {
+  // dewall restarts itself with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (io/huge_pages.hpp)
+  // before it reads anything; =0 in the environment keeps it from restarting.
+  const dewall::test::Cli_in_directory cli("cli_test_huge_pages");
+  REQUIRE(cli("generate uniform 3000 --seed 4 -o p.txt").status == 0);
+  const auto restarted = cli.shell("cat p.txt | env -u GLIBC_TUNABLES $DEWALL triangulate - --threads 1 --stats");
+  const auto not_restarted =
+      cli.shell("cat p.txt | GLIBC_TUNABLES=glibc.malloc.hugetlb=0 $DEWALL triangulate - --threads 1 --stats");
+  REQUIRE(restarted.status == 0);
+  REQUIRE(not_restarted.status == 0);
+  CHECK(!restarted.out.empty());
+  CHECK(restarted.out == not_restarted.out);
+  CHECK(restarted.err.find("points=3000") != std::string::npos);
+}
+
 TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
   const dewall::test::Cli_in_directory cli("cli_test_stream");
   using dewall::test::slurp;
@@ -194,6 +209,19 @@ TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
     REQUIRE(got.size() > 24);
     CHECK(got.compare(16, 8, std::string(8, '\xff')) == 0);  // binary_simplices_unknown_count
     CHECK(cli("certify p.dwpt got.dwsx").status == 0);
+  }
+  SECTION("--region-points: streaming on one thread gives the collected bytes at the same region size") {
+    // (By default streaming takes smaller regions above 131072 points, so its order differs there.)
+    REQUIRE(cli("triangulate p.dwpt --threads 1 --region-points 5000 -o collected.dwsx").status == 0);
+    REQUIRE(cli("triangulate p.dwpt --threads 1 --region-points 5000 --stream -o streamed.dwsx").status == 0);
+    CHECK(slurp(cli.path("streamed.dwsx")) == slurp(cli.path("collected.dwsx")));
+    REQUIRE(cli("triangulate p.dwpt --threads 1 -o default.dwsx").status == 0);
+    CHECK(slurp(cli.path("default.dwsx")) != slurp(cli.path("collected.dwsx")));  // another order
+    for (const char* bad : {"0", "-3", "x", "4294967296"}) {
+      const auto r = cli(std::string("triangulate p.dwpt --region-points ") + bad);
+      CHECK(r.status == 2);
+      CHECK(r.err.find("--region-points") != std::string::npos);
+    }
   }
   SECTION("formats that start with the count cannot be streamed") {
     for (const char* output : {"t.ele", "t.vtk"}) {

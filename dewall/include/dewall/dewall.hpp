@@ -158,7 +158,10 @@ class Sink_output final : public Simplex_output<D> {
 /// the triangulation and is passed on.
 /// Complexity: expected O(n log n) on uniformly distributed points; with
 /// Engine::automatic (the default) at most a small multiple of the incremental
-/// construction's on any input.
+/// construction's on any input. Streamed, only until the first region is
+/// kept (Options::stream): a part of the input that would have handed over
+/// after that is built at DeWall's speed (a cube of points beside a sphere of
+/// them; Engine::cgal keeps the bound, with the triangulation in memory).
 template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {

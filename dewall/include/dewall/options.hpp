@@ -107,9 +107,10 @@ struct Options {
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
   /// once whether to hand over to the incremental engine: it holds what it
   /// builds until the first region's simplices are kept, and never hands over
-  /// after that (search_budget.hpp, Handover_decision). When it hands over,
-  /// the incremental engine's triangulation is whole in memory, as it is
-  /// without streaming.
+  /// after that (search_budget.hpp, Handover_decision): a part of the input
+  /// that would have handed over later is built by the walls and regions, at
+  /// their speed (docs/engines.md). When it hands over, the incremental
+  /// engine's triangulation is whole in memory, as it is without streaming.
   bool stream = false;
 };
 
