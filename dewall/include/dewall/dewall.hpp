@@ -147,8 +147,9 @@ class Sink_output final : public Simplex_output<D> {
 /// incremental engine built them (Options::engine, Statistics::engine), in
 /// CGAL's order. With Options::stream they are handed over as they are built
 /// and not kept (memory: the points, the search structure and the regions in
-/// progress); the set is the same, and so is the order with one thread
-/// (Options::threads = 1). The sink is never called concurrently, but with
+/// progress); the set is the same, and with one thread (Options::threads = 1)
+/// so is the order, given the same Options::region_points (by default
+/// streaming takes smaller regions above 131072 points). The sink is never called concurrently, but with
 /// more threads it is called from several, in an order that depends on
 /// their timing. A sink with a member reserve(n) is told the number of
 /// simplices before the first one when that is known (collected output, and

@@ -93,17 +93,20 @@ struct Options {
   /// cores (one thread, uniform 10^6: regions of n/8 5.07 s, n/4 4.65 s, n/2
   /// 4.55 s; two threads 2.90 / 2.62 / 2.51 s; 10^4–3·10^4 points gain as
   /// much from one level of walls instead of two). But a region's
-  /// triangulation is in memory while it runs, about 900 bytes per point
-  /// (uniform 10^6, both cores, peak memory: regions of n/4 577 MB, 131072
-  /// points 354 MB, 32768 points 199 MB, 16384 points 173 MB; the time 3.30,
-  /// 3.45, 3.75, 4.17 s): the upper bound keeps 10^7–10^8 points from holding
+  /// triangulation is in memory while it runs, about 600 bytes per point
+  /// (uniform 10^6, both cores, collecting, peak memory: regions of n/4 528
+  /// MB, 131072 points 450 MB, 32768 points 414 MB, against CGAL's 573 MB,
+  /// the time 1.01–1.09, 1.06–1.18, 1.25–1.33× CGAL parallel's; streaming
+  /// 32768 points 172 MB, 65536 210 MB): the upper bound keeps 10^7–10^8 points from holding
   /// gigabytes per region, and streaming, which is for memory, takes smaller
-  /// ones. Fixed by n, never by the number of threads, so the output does not
-  /// depend on them.
+  /// ones. Fixed by n and Options::stream, never by the number of threads, so
+  /// the output does not depend on them.
   std::size_t region_points = 0;
   /// triangulate_to hands the simplices to its sink as they are built, and
-  /// does not keep them (dewall.hpp). The same simplices; the same order with
-  /// one thread, an order that depends on the threads' timing with more.
+  /// does not keep them (dewall.hpp). The same simplices; with one thread in
+  /// the order collecting gives with the same region_points (by default
+  /// streaming takes smaller regions above 131072 points), with more in an
+  /// order that depends on the threads' timing.
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
   /// once whether to hand over to the incremental engine: it holds what it
   /// builds until the first region's simplices are kept, and never hands over

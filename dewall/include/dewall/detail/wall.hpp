@@ -17,10 +17,11 @@
 // — but a subproblem's faces can then outlive its points; recurse() splits the
 // points together with the faces' vertices in that case.
 //
-// Output order is the depth-first order (wall, then P1's part, then P2's),
-// then the simplices finish() gift-wraps from the faces regions left open,
-// whatever the number of threads: parallel subproblems write to their own
-// blocks of output, appended in that order.
+// Collected, the output order is the depth-first order (wall, then P1's
+// part, then P2's), then the simplices finish() gift-wraps from the faces
+// regions left open, whatever the number of threads: parallel subproblems
+// write to their own blocks of output, appended in that order. Streamed, the
+// same on one thread; with more, blocks go out as the tasks fill them.
 #pragma once
 
 #include <tbb/parallel_invoke.h>
