@@ -16,7 +16,6 @@
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_d.h>
 
-#include <optional>
 #include <utility>
 
 #include "dewall/detail/input.hpp"

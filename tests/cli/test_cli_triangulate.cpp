@@ -170,6 +170,13 @@ TEST_CASE("command line: the restart for huge pages keeps the arguments and stan
   CHECK(!restarted.out.empty());
   CHECK(restarted.out == not_restarted.out);
   CHECK(restarted.err.find("points=3000") != std::string::npos);
+  // Started through the dynamic loader, /proc/self/exe is the loader: no restart (it would run
+  // the loader on our arguments), the same output.
+  const auto through_loader = cli.shell(
+      "loader=/lib64/ld-linux-x86-64.so.2; [ -x $loader ] || loader=; "
+      "cat p.txt | env -u GLIBC_TUNABLES $loader $DEWALL triangulate - --threads 1");
+  CHECK(through_loader.status == 0);
+  CHECK(through_loader.out == restarted.out);
 }
 
 TEST_CASE("command line: triangulate --stream", "[cli][stream]") {

@@ -279,26 +279,31 @@ TEST_CASE("engines: an output that fails stops the stream for every task", "[eng
   const std::vector<dewall::detail::Built_simplex<3>> block{{{0, 1, 2, 3}, 0}};
   Failing open_output, held_output;
   Stream open(open_output, false), held(held_output, true);
-  CHECK_THROWS_AS(open.put(block), std::runtime_error);
-  // Another task's next block: stopped, and the output is not called again.
-  CHECK_THROWS_AS(open.put(block), Stream::Stream_failed);
+  CHECK_THROWS_WITH(open.put(block), "disk full");
+  // Another task's next block: stopped with the output's exception, and the
+  // output is not called again.
+  CHECK_THROWS_WITH(open.put(block), "disk full");
   CHECK(open_output.calls == 1);
   held.put(block);
-  CHECK_THROWS_AS(held.release(), std::runtime_error);
-  CHECK_THROWS_AS(held.put(block), Stream::Stream_failed);
+  CHECK_THROWS_WITH(held.release(), "disk full");
+  CHECK_THROWS_WITH(held.put(block), "disk full");
   held.release();  // nothing more is passed on
   CHECK(held_output.calls == 1);
 
-  // Through the engine, on both cores: the sink's exception is the one the caller sees.
+  // Through the engine, on both cores: the sink's exception is the one the
+  // caller sees, failing in the top wall's simplices (before the halves run
+  // as tasks) or in the regions' (while both tasks stream).
   const auto points = generated<3>(dewall::io::Point_kind::uniform, 40000, 21);
-  std::size_t calls = 0;
-  CHECK_THROWS_WITH(dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(
-                        std::span<const dewall::kernel::Point_d<3>>(points),
-                        [&](const dewall::Simplex<3>&) {
-                          if (++calls == 100) throw std::runtime_error("sink failed");
-                        },
-                        Options{.threads = 2, .engine = Engine::hybrid, .stream = true}),
-                    "sink failed");
+  for (std::size_t fail_at : {100, 20000, 200000}) {
+    std::size_t calls = 0;
+    CHECK_THROWS_WITH(dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(
+                          std::span<const dewall::kernel::Point_d<3>>(points),
+                          [&](const dewall::Simplex<3>&) {
+                            if (++calls == fail_at) throw std::runtime_error("sink failed");
+                          },
+                          Options{.threads = 2, .engine = Engine::hybrid, .stream = true}),
+                      "sink failed");
+  }
 }
 
 TEST_CASE("engines: a cancelled caller's TBB work does not cut the triangulation short", "[engine][threads]") {

@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <mutex>
 #include <span>
 #include <utility>
@@ -52,19 +53,20 @@ class Simplex_stream {
  public:
   Simplex_stream(Simplex_output<D>& out, bool held) : out_(out), holding_(held) {}
 
-  /// \throws what the output throws; once it has thrown, Stream_failed for
-  /// every later block, so that the other tasks stop at their next block
-  /// instead of triangulating on for an output that is gone.
+  /// \throws what the output throws; once it has thrown, the same exception
+  /// again for every later block, so that the other tasks stop at their next
+  /// block instead of triangulating on for an output that is gone (and
+  /// whichever task's exception TBB passes on, the caller sees the output's).
   void put(std::span<const Built_simplex<D>> block) {
     const std::lock_guard lock(mutex_);
-    if (failed_) throw Stream_failed{};
+    if (failure_) std::rethrow_exception(failure_);
     if (holding_) held_.emplace_back(block.begin(), block.end());
     else pass_on(block);
   }
   /// Passes on what was held, and from now on every block at once.
   void release() {
     const std::lock_guard lock(mutex_);
-    if (!holding_ || failed_) return;
+    if (!holding_ || failure_) return;
     holding_ = false;
     for (auto& b : held_) {
       pass_on(b);
@@ -72,10 +74,6 @@ class Simplex_stream {
     }
     held_.clear();
   }
-
-  /// Thrown to the tasks still running after the output failed (the first
-  /// exception is the one the caller sees).
-  struct Stream_failed {};
 
  private:
   void pass_on(std::span<const Built_simplex<D>> block) {
@@ -85,7 +83,7 @@ class Simplex_stream {
       // put() again on this thread and lock the mutex it holds.
       tbb::this_task_arena::isolate([&] { out_.put(block); });
     } catch (...) {
-      failed_ = true;
+      failure_ = std::current_exception();
       throw;
     }
   }
@@ -93,7 +91,7 @@ class Simplex_stream {
   Simplex_output<D>& out_;
   std::mutex mutex_;
   bool holding_;
-  bool failed_ = false;
+  std::exception_ptr failure_;
   std::vector<std::vector<Built_simplex<D>>> held_;
 };
 

@@ -11,7 +11,10 @@ namespace dewall::io {
 /// pages, uniform 10^6 points fault 3.7 thousand pages instead of 117
 /// thousand, and dewall triangulate takes 16 % less time, CGAL's construction
 /// 11 % less (this machine). Call first thing in main; returns when not
-/// restarted. GLIBC_TUNABLES=glibc.malloc.hugetlb=0 turns it off.
+/// restarted. GLIBC_TUNABLES=glibc.malloc.hugetlb=0 turns it off (for tools
+/// that do not follow exec, such as valgrind without --trace-children=yes).
+/// Not restarted: set-user-ID programs, and a program started through the
+/// dynamic loader (ld.so PROGRAM).
 void restart_with_huge_pages(char** argv);
 
 }  // namespace dewall::io
