@@ -16,6 +16,7 @@
 #include <CGAL/Spatial_sort_traits_adapter_3.h>
 #include <CGAL/Spatial_sort_traits_adapter_d.h>
 
+#include <type_traits>
 #include <utility>
 
 #include "dewall/detail/input.hpp"
@@ -77,6 +78,7 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
       if (dt.number_of_vertices() != before) v->info() = id;
       hint = cell_of(v);
     }
+    std::remove_reference_t<decltype(items)>().swap(items);  // not needed while the cells are walked
   };
   if constexpr (D == 2) {
     using Vb = CGAL::Triangulation_vertex_base_with_info_2<Index, Epick>;
@@ -89,7 +91,6 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
     CGAL::Delaunay_triangulation_2<Epick, Tds> dt;
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_2<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->face(); });
-    std::vector<Item>().swap(items);
     if (dt.dimension() < 2) return false;
     use(make_view<D>(dt, dt.all_faces_begin(), dt.all_faces_end(), dt.number_of_faces()));
   } else if constexpr (D == 3) {
@@ -104,7 +105,6 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
     CGAL::Delaunay_triangulation_3<Epick, Tds> dt;
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_3<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->cell(); });
-    std::vector<Item>().swap(items);
     if (dt.dimension() < 3) return false;
     use(make_view<D>(dt, dt.all_cells_begin(), dt.all_cells_end(), dt.number_of_finite_cells()));
   } else {
