@@ -49,41 +49,61 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
   return kept;
 }
 
+/// An affine basis grown one point at a time, exactly: the row echelon form of
+/// the differences x − origin over the rationals (a double converts to mpq
+/// exactly). Used to check that the input spans E^D and to pick the first
+/// simplex of the incremental engine.
+template <int D>
+class Affine_basis {
+ public:
+  explicit Affine_basis(const std::array<double, D>& origin) : origin_(origin) {}
+
+  /// Adds x when it is affinely independent of the origin and the points
+  /// added so far; says whether it was.
+  bool add(const std::array<double, D>& x) {
+    if (rank() == D) return false;
+    std::array<mpq_class, D> v;
+    for (int j = 0; j < D; ++j) v[j] = mpq_class(x[j]) - mpq_class(origin_[j]);
+    for (std::size_t b = 0; b < basis_.size(); ++b) {
+      const int p = pivot_[b];
+      if (sgn(v[p]) == 0) continue;
+      const mpq_class factor = v[p] / basis_[b][p];
+      for (int j = 0; j < D; ++j) v[j] -= factor * basis_[b][j];
+    }
+    for (int j = 0; j < D; ++j)
+      if (sgn(v[j]) != 0) {
+        basis_.push_back(v);
+        pivot_.push_back(j);
+        return true;
+      }
+    return false;
+  }
+  /// The affine dimension of the origin and the points added.
+  int rank() const { return static_cast<int>(basis_.size()); }
+
+ private:
+  std::array<double, D> origin_;
+  std::vector<std::array<mpq_class, D>> basis_;
+  std::vector<int> pivot_;
+};
+
 /// Throws Invalid_input unless the points span E^D.
 template <int D>
 void require_full_dimension(std::span<const std::array<double, D>> x) {
   // \pre x.size() >= D + 1 (checked by the caller).
-  // Row echelon form of the differences x_i − x_0 over the rationals. Points are
-  // taken in a strided order first so that ordered inputs (a plane after a
-  // plane) reach full rank after a few rows.
-  std::vector<std::array<mpq_class, D>> basis;
-  std::vector<int> pivot;
-  auto add = [&](std::size_t i) {
-    std::array<mpq_class, D> v;
-    for (int j = 0; j < D; ++j) v[j] = mpq_class(x[i][j]) - mpq_class(x[0][j]);
-    for (std::size_t b = 0; b < basis.size(); ++b) {
-      const int p = pivot[b];
-      if (sgn(v[p]) == 0) continue;
-      const mpq_class factor = v[p] / basis[b][p];
-      for (int j = 0; j < D; ++j) v[j] -= factor * basis[b][j];
-    }
-    for (int j = 0; j < D; ++j)
-      if (sgn(v[j]) != 0) {
-        basis.push_back(v);
-        pivot.push_back(j);
-        return;
-      }
-  };
+  // Points are taken in a strided order first so that ordered inputs (a plane
+  // after a plane) reach full rank after a few rows.
+  Affine_basis<D> basis(x[0]);
   const std::size_t n = x.size();
   const std::size_t stride = std::max<std::size_t>(1, n / 64);
-  for (std::size_t i = 1; i < n && basis.size() < D; i += stride) add(i);
-  for (std::size_t i = 1; i < n && basis.size() < D; ++i) add(i);
-  if (basis.size() < D) {
+  for (std::size_t i = 1; i < n && basis.rank() < D; i += stride) basis.add(x[i]);
+  for (std::size_t i = 1; i < n && basis.rank() < D; ++i) basis.add(x[i]);
+  if (basis.rank() < D) {
     static const char* const names[] = {"a point", "collinear", "coplanar", "in one 3-flat", "in one 4-flat",
                                         "in one 5-flat"};
     throw Invalid_input("the points do not span E^" + std::to_string(D) + ": all " + std::to_string(n) +
-                        " distinct points are " + names[basis.size()] + " (affine dimension " +
-                        std::to_string(basis.size()) + ")");
+                        " distinct points are " + names[basis.rank()] + " (affine dimension " +
+                        std::to_string(basis.rank()) + ")");
   }
 }
 

@@ -1,0 +1,419 @@
+// The project's own incremental Delaunay construction in E^D (D = 2 … 6):
+// Bowyer–Watson (A. Bowyer, "Computing Dirichlet tessellations", and D. F.
+// Watson, "Computing the n-dimensional Delaunay tessellation...", both The
+// Computer Journal 24(2), 1981) over the project's kernel, every decision an
+// exact filtered predicate, ties broken by CGAL's symbolic perturbation, so the
+// cells are CGAL's on every input.
+//
+// Why Bowyer–Watson and not flips: one insertion is one breadth-first search
+// over the cells whose spheres hold the new point (the cavity) and one star of
+// new cells glued to its boundary, the same code in every dimension; flips
+// need a different flip set per dimension (2-3/3-2/4-4 in 3D, more above) and
+// are faster only when specialised for one. The fastest codes (hxt, Geogram)
+// are cavity based too.
+//
+// Data (flat arrays, no per-cell allocation; hxt's and Geogram's layout):
+//  * points in insertion order, one contiguous array (vertex id = position);
+//  * per cell slot, its D + 1 vertex ids and D + 1 packed neighbour references
+//    (cell << facet_bits | facet index in that neighbour), positively oriented;
+//  * one infinite vertex closing the hull: a hull facet's outer neighbour is an
+//    infinite cell, so every point outside the hull has a cavity like any other;
+//  * slots of cells a cavity destroys are reused by the new cells.
+//
+// Steps:
+//  1. Order: BRIO rounds along a Hilbert curve (spatial_order.hpp).
+//  2. First simplex: the first D + 1 affinely independent points in that
+//     order (exact rank, Affine_basis); the points passed over are inserted
+//     next.
+//  3. Insert each point p:
+//     a. locate: a visibility walk (orientation tests) from the last cell
+//        created to a cell holding p, or to an infinite cell whose hull
+//        facet p sees;
+//     b. cavity: the cells in conflict with p, found breadth-first from there
+//        (a finite cell: p inside its perturbed sphere; an infinite cell: p
+//        beyond its hull facet, or in that facet's hyperplane and in conflict
+//        with the finite cell behind it — see in_conflict);
+//     c. star: each boundary facet of the cavity plus p is a new cell; the new
+//        cells are glued to the outside across that facet and to each other
+//        across their facets through p, matched by the D − 1 other vertices
+//        in a small hash table.
+// Expected O(n log n) for points in general position (BRIO), the walk and the
+// cavities O(1) per point on well-spread data.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "dewall/detail/assert.hpp"
+#include "dewall/detail/face.hpp"
+#include "dewall/detail/input.hpp"
+#include "dewall/detail/spatial_order.hpp"
+#include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/orientation.hpp"
+#include "dewall/kernel/point.hpp"
+#include "dewall/kernel/side_of_sphere.hpp"
+
+DEWALL_FLOATING_POINT_CODE_BEGIN
+namespace dewall::detail {
+
+/// Counters of one construction (what the profile of a run is made of).
+struct Incremental_statistics {
+  std::size_t walk_steps = 0;     // cells crossed while locating
+  std::size_t conflict_cells = 0; // cells destroyed, summed over insertions
+  std::size_t created_cells = 0;  // cells made, summed over insertions
+};
+
+/// The Delaunay triangulation of distinct points, built incrementally.
+/// Vertex ids are positions in the insertion order (`input_index` maps them
+/// back); cells live in slots, some of them free.
+template <int D>
+class Incremental_delaunay {
+ public:
+  using Point = kernel::Point_d<D>;
+  using Cell = std::array<Index, D + 1>;
+  /// The vertex id of the infinite vertex.
+  static constexpr Index infinite = std::numeric_limits<Index>::max();
+  /// A free slot's first vertex.
+  static constexpr Index free_slot = infinite - 1;
+  /// Bits of a neighbour reference that hold the facet index.
+  static constexpr int facet_bits = std::bit_width(static_cast<unsigned>(D));
+
+  /// Triangulates `points` (distinct, finite). Returns false, having built
+  /// nothing, when they do not span E^D. `ids`, when not empty, are the ids
+  /// the points have for the caller (input_index returns them).
+  bool build(std::span<const Point> points, std::span<const Index> ids = {}) {
+    const std::size_t n = points.size();
+    if (n < static_cast<std::size_t>(D + 1)) return false;
+    std::vector<std::uint32_t> order = brio_order<D>(n, [&](std::size_t i) -> const auto& { return points[i].x; });
+    if (!start(points, order)) return false;
+    points_.resize(n);
+    input_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      points_[k] = points[order[k]];
+      input_[k] = ids.empty() ? order[k] : ids[order[k]];
+    }
+    for (std::size_t k = D + 1; k < n; ++k) insert(static_cast<Index>(k));
+    return true;
+  }
+
+  /// Cell slots, free ones included: cells are 0 … slots() − 1.
+  std::size_t slots() const { return cells_.size(); }
+  bool is_free(std::size_t c) const { return cells_[c][0] == free_slot; }
+  bool is_infinite(std::size_t c) const { return infinite_position(c) <= D; }
+  /// The position of the infinite vertex in cell c, or D + 1 when it is finite.
+  int infinite_position(std::size_t c) const {
+    for (int i = 0; i <= D; ++i)
+      if (cells_[c][i] == infinite) return i;
+    return D + 1;
+  }
+  const Cell& cell(std::size_t c) const { return cells_[c]; }
+  /// The cell across the facet opposite vertex i of c.
+  std::size_t neighbor(std::size_t c, int i) const { return neighbors_[c][i] >> facet_bits; }
+  /// The caller's id of vertex v (finite).
+  Index input_index(Index v) const { return input_[v]; }
+  std::size_t finite_cells() const { return finite_cells_; }
+  const Incremental_statistics& statistics() const { return stats_; }
+
+  /// Checks the data structure (tests): neighbours are
+  /// mutual and share D vertices, finite cells are positively oriented.
+  bool is_valid() const {
+    for (std::size_t c = 0; c < slots(); ++c) {
+      if (is_free(c)) continue;
+      for (int i = 0; i <= D; ++i) {
+        const std::uint32_t ref = neighbors_[c][i];
+        const std::size_t n = ref >> facet_bits;
+        const int j = static_cast<int>(ref & facet_mask);
+        if (n >= slots() || is_free(n) || (neighbors_[n][j] >> facet_bits) != c) return false;
+        for (int k = 0; k <= D; ++k)
+          if (k != i && std::find(cells_[n].begin(), cells_[n].end(), cells_[c][k]) == cells_[n].end()) return false;
+      }
+      if (!is_infinite(c) && orientation(c, -1, nullptr) != kernel::POSITIVE) return false;
+    }
+    return true;
+  }
+
+ private:
+  static constexpr std::uint32_t facet_mask = (1u << facet_bits) - 1;
+  static constexpr std::size_t max_slots = std::size_t{1} << (32 - facet_bits);
+  static std::uint32_t reference(std::size_t c, int i) {
+    return static_cast<std::uint32_t>(c) << facet_bits | static_cast<std::uint32_t>(i);
+  }
+
+  /// Orientation of cell c (finite) with vertex `replaced` (−1: none) replaced by q.
+  kernel::Sign orientation(std::size_t c, int replaced, const Point* q) const {
+    kernel::Point_refs<D, D + 1> refs;
+    for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c][k]];
+    return kernel::orientation_d<D>(refs);
+  }
+
+  /// Whether q lies inside the perturbed sphere of finite cell c.
+  bool sphere_holds(std::size_t c, const Point& q) const {
+    kernel::Point_refs<D, D + 2> refs;
+    for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c][k]];
+    refs[D + 1] = &q;
+    return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
+  }
+
+  /// Whether cell c is in conflict with q: destroyed when q is inserted.
+  /// An infinite cell is when q lies beyond its hull facet (the cell with the
+  /// infinite vertex replaced by q positively oriented). When q lies in the
+  /// facet's hyperplane it is exactly when the finite cell behind the facet
+  /// is: if that cell goes, the facet is on no finite cell any more (a cell
+  /// of q and the facet would be flat) and must go too; if it stays, the facet
+  /// stays a hull facet (q does not lie beyond it). This is the answer CGAL's
+  /// perturbed in-circle test on the facet gives, by that same argument.
+  bool in_conflict(std::size_t c, const Point& q) const {
+    const int i = infinite_position(c);
+    if (i > D) return sphere_holds(c, q);
+    const kernel::Sign s = orientation(c, i, &q);
+    if (s != kernel::ZERO) return s == kernel::POSITIVE;
+    return sphere_holds(neighbor(c, i), q);
+  }
+
+  /// Steps 1–2: the first simplex and its D + 1 infinite neighbours; `order`
+  /// becomes the insertion order with the simplex's points first.
+  bool start(std::span<const Point> points, std::vector<std::uint32_t>& order) {
+    Affine_basis<D> basis(points[order[0]].x);
+    std::vector<std::uint32_t> simplex{order[0]}, passed_over;
+    std::size_t k = 1;
+    for (; k < order.size() && basis.rank() < D; ++k) {
+      if (basis.add(points[order[k]].x)) simplex.push_back(order[k]);
+      else passed_over.push_back(order[k]);
+    }
+    if (basis.rank() < D) return false;
+    // order = simplex, passed over, rest (k … end), kept in place.
+    std::copy_backward(simplex.begin(), simplex.end(),
+                       std::copy_backward(passed_over.begin(), passed_over.end(), order.begin() + static_cast<std::ptrdiff_t>(k)));
+
+    points_.resize(D + 1);
+    for (int i = 0; i <= D; ++i) points_[i] = points[order[i]];
+    Cell first;
+    for (int i = 0; i <= D; ++i) first[i] = static_cast<Index>(i);
+    cells_.assign(1, first);
+    if (orientation(0, -1, nullptr) == kernel::NEGATIVE) std::swap(cells_[0][0], cells_[0][1]);
+    neighbors_.assign(1, {});
+    // The infinite cell across facet i: the simplex with vertex i replaced by
+    // the infinite vertex and two others swapped, so that putting a point
+    // beyond the facet in the infinite vertex's place orients it positively.
+    for (int i = 0; i <= D; ++i) {
+      Cell c = cells_[0];
+      c[i] = infinite;
+      std::swap(c[(i + 1) % (D + 1)], c[(i + 2) % (D + 1)]);
+      cells_.push_back(c);
+      neighbors_.push_back({});
+      neighbors_[0][i] = reference(cells_.size() - 1, i);
+      neighbors_.back()[i] = reference(0, i);
+    }
+    // The infinite cells meet each other across their facets through the infinite vertex.
+    for (int a = 0; a <= D; ++a)
+      for (int b = a + 1; b <= D; ++b) {
+        const std::size_t ca = 1 + a, cb = 1 + b;
+        // Cell a lacks vertex a of the simplex, cell b lacks b: the facet of a
+        // opposite (the position of) vertex b, and of b opposite vertex a.
+        const int ia = position(ca, cells_[0][b]), ib = position(cb, cells_[0][a]);
+        neighbors_[ca][ia] = reference(cb, ib);
+        neighbors_[cb][ib] = reference(ca, ia);
+      }
+    finite_cells_ = 1;
+    last_ = 0;
+    mark_.assign(cells_.size(), 0);
+    return true;
+  }
+
+  int position(std::size_t c, Index v) const {
+    for (int i = 0; i <= D; ++i)
+      if (cells_[c][i] == v) return i;
+    DEWALL_ASSERT(false);
+    return -1;
+  }
+
+  /// Step 3a: a cell in conflict with q, by a visibility walk from last_.
+  std::size_t locate(const Point& q) {
+    std::size_t c = last_, previous = std::numeric_limits<std::size_t>::max();
+    if (const int i = infinite_position(c); i <= D) c = neighbor(c, i);
+    unsigned rotation = 0;
+    for (;;) {
+      if (is_infinite(c)) return c;  // q beyond the hull facet crossed last
+      bool moved = false;
+      rotation = rotation * 1103515245u + 12345u;  // varies the first facet tried
+      const int first = static_cast<int>((rotation >> 16) % (D + 1));
+      for (int k = 0; k <= D; ++k) {
+        const int i = (first + k) % (D + 1);
+        const std::size_t next = neighbor(c, i);
+        if (next == previous) continue;
+        if (orientation(c, i, &q) == kernel::NEGATIVE) {
+          previous = c;
+          c = next;
+          moved = true;
+          ++stats_.walk_steps;
+          break;
+        }
+      }
+      if (!moved) return c;  // q in the closed cell c: strictly inside its sphere
+    }
+  }
+
+  /// A boundary facet of the cavity: the new cell's vertices (the old
+  /// cell's, with the one opposite the facet replaced by the new point) and
+  /// the neighbour reference outside.
+  struct Boundary_facet {
+    Cell vertices;
+    int facet;
+    std::uint32_t outside;
+  };
+
+  /// Step 3: inserts vertex v (points_[v]).
+  void insert(Index v) {
+    const Point& q = points_[v];
+    const std::size_t start_cell = locate(q);
+    DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
+
+    // 3b. The cavity, breadth-first; mark_: epoch = in conflict, epoch + 1 = not.
+    epoch_ += 2;
+    if (epoch_ < 2) {  // wrapped around: forget every old mark
+      std::fill(mark_.begin(), mark_.end(), 0);
+      epoch_ = 2;
+    }
+    const std::uint32_t in = epoch_, out = epoch_ + 1;
+    cavity_.clear();
+    boundary_.clear();
+    cavity_.push_back(start_cell);
+    mark_[start_cell] = in;
+    for (std::size_t k = 0; k < cavity_.size(); ++k) {
+      const std::size_t c = cavity_[k];
+      for (int i = 0; i <= D; ++i) {
+        const std::uint32_t ref = neighbors_[c][i];
+        const std::size_t n = ref >> facet_bits;
+        if (mark_[n] == in) continue;
+        if (mark_[n] != out) {
+          if (in_conflict(n, q)) {
+            mark_[n] = in;
+            cavity_.push_back(n);
+            continue;
+          }
+          mark_[n] = out;
+        }
+        Boundary_facet f{cells_[c], i, ref};
+        f.vertices[i] = v;
+        boundary_.push_back(f);
+      }
+    }
+
+    // 3c. The star: slots of the cavity first, then free ones, then new ones.
+    stats_.conflict_cells += cavity_.size();
+    stats_.created_cells += boundary_.size();
+    for (const std::size_t c : cavity_)
+      if (!is_infinite(c)) --finite_cells_;
+    std::size_t reused = 0;
+    ridges_.begin(boundary_.size() * D / 2);  // each ridge parked once
+    for (const Boundary_facet& f : boundary_) {
+      std::size_t s;
+      if (reused < cavity_.size()) s = cavity_[reused++];
+      else if (!free_.empty()) s = free_.back(), free_.pop_back();
+      else {
+        s = cells_.size();
+        if (s >= max_slots) throw Invalid_input("too many cells for the incremental engine's 32-bit cell references");
+        cells_.emplace_back();
+        neighbors_.emplace_back();
+        mark_.push_back(0);
+      }
+      cells_[s] = f.vertices;
+      mark_[s] = 0;
+      neighbors_[s][f.facet] = f.outside;
+      neighbors_[f.outside >> facet_bits][f.outside & facet_mask] = reference(s, f.facet);
+      bool finite = true;
+      for (int i = 0; i <= D; ++i) {
+        if (f.vertices[i] == infinite) finite = false;
+        if (i == f.facet) continue;
+        // The facet opposite vertex i holds v and the D − 1 others: its key.
+        if (const std::uint32_t partner = ridges_.match_or_park(ridge_key(f.vertices, f.facet, i), reference(s, i));
+            partner != Ridge_table::none) {
+          neighbors_[s][i] = partner;
+          neighbors_[partner >> facet_bits][partner & facet_mask] = reference(s, i);
+        }
+      }
+      if (finite) {
+        ++finite_cells_;
+        last_ = s;
+      }
+    }
+    for (; reused < cavity_.size(); ++reused) {
+      cells_[cavity_[reused]][0] = free_slot;
+      free_.push_back(static_cast<Index>(cavity_[reused]));
+    }
+  }
+
+  using Ridge = std::array<Index, D - 1>;
+  /// The vertices of cell w other than those at positions a and b, sorted.
+  static Ridge ridge_key(const Cell& w, int a, int b) {
+    Ridge r;
+    int k = 0;
+    for (int i = 0; i <= D; ++i)
+      if (i != a && i != b) r[k++] = w[i];
+    std::sort(r.begin(), r.end());
+    return r;
+  }
+
+  /// The facets through the new point, matched in pairs by their other D − 1
+  /// vertices: open addressing, sized per insertion, never shrunk.
+  class Ridge_table {
+   public:
+    static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    void begin(std::size_t entries) {
+      std::size_t size = 16;
+      while (size < 2 * entries) size *= 2;
+      if (slots_.size() < size) slots_.resize(size);
+      mask_ = size - 1;
+      std::fill(slots_.begin(), slots_.begin() + static_cast<std::ptrdiff_t>(size), Slot{{}, none});
+    }
+    /// The reference parked under `key`, removed; or parks `ref` and returns none.
+    std::uint32_t match_or_park(const Ridge& key, std::uint32_t ref) {
+      std::uint64_t h = 0;
+      for (Index x : key) h = (h ^ x) * 0x9e3779b97f4a7c15ull;
+      for (std::size_t i = (h >> 32) & mask_;; i = (i + 1) & mask_) {
+        Slot& s = slots_[i];
+        if (s.ref == none) {
+          s = {key, ref};
+          return none;
+        }
+        if (s.ref != taken && s.key == key) {
+          const std::uint32_t partner = s.ref;
+          s.ref = taken;  // a tombstone: later probes pass over it
+          return partner;
+        }
+      }
+    }
+
+   private:
+    static constexpr std::uint32_t taken = none - 1;
+    struct Slot {
+      Ridge key;
+      std::uint32_t ref;
+    };
+    std::vector<Slot> slots_;
+    std::size_t mask_ = 0;
+  };
+
+  std::vector<Point> points_;    // by vertex id (insertion order)
+  std::vector<Index> input_;     // the caller's id of each vertex
+  std::vector<Cell> cells_;      // by slot
+  std::vector<std::array<std::uint32_t, D + 1>> neighbors_;  // by slot
+  std::vector<std::uint32_t> mark_;  // cavity epochs, by slot
+  std::vector<Index> free_;      // free slots
+  std::size_t finite_cells_ = 0;
+  std::size_t last_ = 0;         // a finite cell made last: the next walk starts there
+  std::uint32_t epoch_ = 0;
+  std::vector<std::size_t> cavity_;
+  std::vector<Boundary_facet> boundary_;
+  Ridge_table ridges_;
+  Incremental_statistics stats_;
+};
+
+}  // namespace dewall::detail
+DEWALL_FLOATING_POINT_CODE_END
