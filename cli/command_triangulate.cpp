@@ -1,4 +1,4 @@
-// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N] [--stream]
+// dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N] [--stream]
 //                    [--region-points N] [--stats] [--quiet]
 #include <cstdio>
 #include <optional>
@@ -76,7 +76,7 @@ int command_triangulate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
-    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|cgal] [--threads N]\n"
+    "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N]\n"
     "              [--stream] [--region-points N] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
@@ -88,13 +88,15 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      legacy VTK for ParaView when it ends in .vtk (2D and 3D).\n"
     "      --engine: the construction; the simplices are the same with each.\n"
     "      hybrid builds DeWall's walls down to regions of n/4 points (16384 to\n"
-    "      262144) and triangulates each region with CGAL's incremental\n"
-    "      construction (no merge step; the regions run in parallel). auto\n"
-    "      (default) is hybrid, handing over to CGAL alone when the walls'\n"
-    "      searches prove too costly (points on or near one sphere, thin\n"
-    "      surfaces); CGAL alone also builds inputs of one region's size (16384\n"
-    "      points) and all 4D+ inputs. dewall (walls all the way down, the\n"
-    "      paper's algorithm) and cgal force one construction.\n"
+    "      262144) and triangulates each region with an incremental construction\n"
+    "      (no merge step; the regions run in parallel). auto (default) is\n"
+    "      hybrid, handing over to the incremental construction alone when the\n"
+    "      walls' searches prove too costly (points on or near one sphere, thin\n"
+    "      surfaces); it also builds inputs of one region's size (16384 points)\n"
+    "      and all 4D+ inputs. The incremental construction is dewall's own in\n"
+    "      4D and up and CGAL's in 2D and 3D (the faster of the two on one\n"
+    "      thread). dewall (walls all the way down, the paper's algorithm),\n"
+    "      incremental (dewall's own Bowyer-Watson) and cgal force one.\n"
     "      --threads N: at most N threads (default: all cores); the output is the\n"
     "      same, byte for byte, for every N.\n"
     "      --stream writes each simplex as soon as it is built and keeps none\n"

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "dewall/detail/input.hpp"
+#include "incremental_support.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 
 namespace dewall::detail {
@@ -27,23 +28,30 @@ namespace {
 
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 
-/// Simplices per Simplex_output::put.
-constexpr std::size_t block_size = 8192;
-
-/// One of CGAL's triangulations seen alike in every dimension: its cells from
-/// begin to end (infinite ones included; `finite_cells` finite), each cell's
-/// int32 info (ours to use), its vertices as ids.
+/// One of CGAL's triangulations seen alike in every dimension, as the cell
+/// graph filter_region walks (incremental_support.hpp): its cells from begin
+/// to end (infinite ones included; `finite` finite), each cell's int32 info
+/// (ours to use), its vertices as ids.
 template <int D, class Dt, class Iterator>
-struct Cgal_view {
+struct Cgal_graph {
+  using Cell = decltype(std::declval<Iterator>()->neighbor(0));
   Dt& dt;
   Iterator begin, end;
-  std::size_t finite_cells;
+  std::size_t finite;
 
-  static std::int32_t& info(auto c) {
+  template <class F>
+  void for_each_cell(F&& f) const {
+    for (auto c = begin; c != end; ++c) f(Cell(c));
+  }
+  std::size_t finite_cells() const { return finite; }
+  bool is_infinite(Cell c) const { return dt.is_infinite(c); }
+  static Cell neighbor(Cell c, int i) { return c->neighbor(i); }
+  bool vertex_is_infinite(Cell c, int i) const { return c->vertex(i) == dt.infinite_vertex(); }
+  static std::int32_t& state(Cell c) {
     if constexpr (D <= 3) return c->info();
     else return c->data();
   }
-  static Simplex<D> vertices(auto c) {
+  static Simplex<D> vertices(Cell c) {
     Simplex<D> s;
     for (int i = 0; i <= D; ++i) {
       if constexpr (D <= 3) s[static_cast<std::size_t>(i)] = c->vertex(i)->info();
@@ -54,12 +62,12 @@ struct Cgal_view {
 };
 
 template <int D, class Dt, class Iterator>
-Cgal_view<D, Dt, Iterator> make_view(Dt& dt, Iterator begin, Iterator end, std::size_t finite_cells) {
+Cgal_graph<D, Dt, Iterator> make_graph(Dt& dt, Iterator begin, Iterator end, std::size_t finite_cells) {
   return {dt, begin, end, finite_cells};
 }
 
 /// CGAL's triangulation of the points `ids` (point(i) gives the coordinates
-/// of point i), passed to `use(view)` once built; a Cgal_view of it lets the
+/// of point i), passed to `use(graph)` once built; a Cgal_graph of it lets the
 /// code below walk its cells alike in every dimension. False, having called
 /// nothing, when the points do not span E^D. \pre the ids' points are distinct.
 template <int D, class Point_of, class Use>
@@ -92,7 +100,7 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_2<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->face(); });
     if (dt.dimension() < 2) return false;
-    use(make_view<D>(dt, dt.all_faces_begin(), dt.all_faces_end(), dt.number_of_faces()));
+    use(make_graph<D>(dt, dt.all_faces_begin(), dt.all_faces_end(), dt.number_of_faces()));
   } else if constexpr (D == 3) {
     using Vb = CGAL::Triangulation_vertex_base_with_info_3<Index, Epick>;
     using Cb = CGAL::Triangulation_cell_base_with_info_3<std::int32_t, Epick,
@@ -106,7 +114,7 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
     insert_sorted(dt, items, CGAL::Spatial_sort_traits_adapter_3<Epick, CGAL::First_of_pair_property_map<Item>>(),
                   [](auto v) { return v->cell(); });
     if (dt.dimension() < 3) return false;
-    use(make_view<D>(dt, dt.all_cells_begin(), dt.all_cells_end(), dt.number_of_finite_cells()));
+    use(make_graph<D>(dt, dt.all_cells_begin(), dt.all_cells_end(), dt.number_of_finite_cells()));
   } else {
     using K = CGAL::Epick_d<CGAL::Dimension_tag<D>>;
     using Vertex = CGAL::Triangulation_vertex<K, Index>;
@@ -129,7 +137,7 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
       hint = v->full_cell();
     }
     if (dt.current_dimension() < D) return false;
-    use(make_view<D>(dt, dt.full_cells_begin(), dt.full_cells_end(), dt.number_of_finite_full_cells()));
+    use(make_graph<D>(dt, dt.full_cells_begin(), dt.full_cells_end(), dt.number_of_finite_full_cells()));
   }
   return true;
 }
@@ -138,16 +146,16 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
 /// validity invariant); its dD cells share one orientation, tested on the
 /// first finite cell with our exact orientation_d_object. The engine tests
 /// check every simplex. (Testing each cell cost 3 % of the run at 10^6 points.)
-template <int D, class View, class Point_of>
-bool cells_negative(const View& view, Point_of&& point) {
+template <int D, class Graph, class Point_of>
+bool cells_negative(const Graph& graph, Point_of&& point) {
   if constexpr (D <= 3) {
     return false;
   } else {
-    for (auto c = view.begin; c != view.end; ++c) {
-      if (view.dt.is_infinite(c)) continue;
+    for (auto c = graph.begin; c != graph.end; ++c) {
+      if (graph.dt.is_infinite(c)) continue;
       std::array<kernel::Point_d<D>, D + 1> p;
       std::array<const kernel::Point_d<D>*, D + 1> refs;
-      const Simplex<D> s = view.vertices(c);
+      const Simplex<D> s = graph.vertices(c);
       for (int i = 0; i <= D; ++i) {
         p[static_cast<std::size_t>(i)].x = point(s[static_cast<std::size_t>(i)]);
         refs[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
@@ -158,99 +166,28 @@ bool cells_negative(const View& view, Point_of&& point) {
   }
 }
 
-/// Region_filter's walk (region.hpp) over CGAL's cells, each cell's state in
-/// its info; `flip`: the cells are negatively oriented.
-template <int D, class View>
-void filter_region(const View& view, bool flip, Region_filter<D>& filter) {
-  // NEAR_OPEN: a neighbour is infinite or dropped (only such a cell, when
-  // kept, reads its neighbours' states: they are scattered in memory).
-  enum : std::int32_t { UNTESTED = 0, KEPT = 1, DROPPED = 2, INFINITE = 3, STATE = 3, NEAR_OPEN = 4 };
-  auto oriented = [&](auto c) {
-    Simplex<D> s = View::vertices(c);
-    if (flip) std::swap(s[0], s[1]);
-    return s;
-  };
-  filter.begin(view.finite_cells);
-  using Handle = decltype(view.begin->neighbor(0));
-  std::vector<Handle> infinite, hull, queue;
-  for (auto c = view.begin; c != view.end; ++c) {
-    const bool inf = view.dt.is_infinite(c);
-    View::info(c) = inf ? INFINITE : UNTESTED;
-    if (inf) infinite.push_back(c);
-  }
-  for (const Handle c : infinite)
-    for (int i = 0; i <= D; ++i) {
-      View::info(c->neighbor(i)) |= NEAR_OPEN;
-      if (c->vertex(i) == view.dt.infinite_vertex()) hull.push_back(c->neighbor(i));
-    }
-  auto test = [&](Handle c) {
-    std::int32_t& state = View::info(c);
-    if ((state & STATE) != UNTESTED) return;
-    if (filter.empty_of_others(oriented(c))) {
-      state |= KEPT;
-    } else {
-      state |= DROPPED;
-      queue.push_back(c);
-      for (int i = 0; i <= D; ++i) View::info(c->neighbor(i)) |= NEAR_OPEN;
-    }
-  };
-  for (const Handle c : hull) test(c);
-  while (!queue.empty()) {
-    const Handle c = queue.back();
-    queue.pop_back();
-    for (int i = 0; i <= D; ++i) test(c->neighbor(i));
-  }
-  for (auto c = view.begin; c != view.end; ++c) {
-    const std::int32_t state = View::info(c);
-    if ((state & STATE) == INFINITE || (state & STATE) == DROPPED) continue;
-    unsigned open = 0;
-    if (state & NEAR_OPEN)
-      for (int i = 0; i <= D; ++i) {
-        const std::int32_t across = View::info(c->neighbor(i)) & STATE;
-        if (across == INFINITE || across == DROPPED) open |= 1u << i;
-      }
-    if (flip) open = (open & ~3u) | (open >> 1 & 1u) | (open << 1 & 2u);
-    filter.keep(oriented(c), open);
-  }
-}
-
 }  // namespace
 
 template <int D>
 Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
                                  const std::vector<std::size_t>* given_distinct) {
-  using K = kernel::Filtered_kernel_d<D>;
   const kernel::Fp_environment_guard guard;  // CGAL's filters assume the default environment too
-  const std::vector<std::size_t> distinct = given_distinct ? *given_distinct : distinct_points<K>(K{}, points);
-  {
-    std::vector<std::array<double, D>> coords(distinct.size());
-    for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
-    require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
-  }
-
+  const std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
   const std::vector<Index> ids(distinct.begin(), distinct.end());
   // Positively oriented, as DeWall writes them (TetGen .ele expects it).
   auto point = [&](Index i) -> const std::array<double, D>& { return points[i].x; };
-  std::vector<Built_simplex<D>> block;
-  block.reserve(block_size);
   std::size_t count = 0;
-  with_cgal_triangulation<D>(ids, point, [&](const auto& view) {
-    output.expect(view.finite_cells);
-    const bool flip = cells_negative<D>(view, point);
-    for (auto c = view.begin; c != view.end; ++c) {
-      if (view.dt.is_infinite(c)) continue;
-      Simplex<D> s = view.vertices(c);
+  with_cgal_triangulation<D>(ids, point, [&](const auto& graph) {
+    Block_writer<D> writer(output, graph.finite);
+    const bool flip = cells_negative<D>(graph, point);
+    for (auto c = graph.begin; c != graph.end; ++c) {
+      if (graph.dt.is_infinite(c)) continue;
+      Simplex<D> s = graph.vertices(c);
       if (flip) std::swap(s[0], s[1]);
-      block.push_back({s, 0});
-      if (block.size() == block_size) {
-        output.put(block);
-        count += block.size();
-        block.clear();
-      }
+      writer.put(s);
     }
+    count = writer.finish();
   });
-  output.put(block);
-  count += block.size();
   Statistics st;
   st.input_points = points.size();
   st.distinct_points = distinct.size();
@@ -263,8 +200,10 @@ template <int D>
 bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords, Region_filter<D>& filter) {
   const kernel::Fp_environment_guard guard;
   auto point = [&](Index i) -> const Coords<D>& { return coords[i]; };
-  return with_cgal_triangulation<D>(region, point,
-                                    [&](const auto& view) { filter_region<D>(view, cells_negative<D>(view, point), filter); });
+  return with_cgal_triangulation<D>(region, point, [&](const auto& graph) {
+    auto walked = graph;  // filter_region writes the cells' infos, not the graph
+    filter_region<D>(walked, cells_negative<D>(graph, point), filter);
+  });
 }
 
 #define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \

@@ -18,9 +18,11 @@ class Delaunay:
         other real arrays are converted exactly (dewall._arrays).
     engine: "auto" (in 2D and 3D the hybrid, handing over to CGAL's
         incremental construction when DeWall's searches prove too costly, e.g.
-        points on one sphere; in 4D and up CGAL's), "hybrid" (DeWall's walls
-        down to regions of n/4 points, each triangulated by CGAL), "dewall"
-        (walls all the way down) or "cgal". The simplices are the same with each.
+        points on one sphere; in 4D and up dewall's own incremental
+        construction), "hybrid" (DeWall's walls down to regions of n/4 points,
+        each triangulated incrementally), "dewall" (walls all the way down),
+        "incremental" (dewall's own Bowyer-Watson) or "cgal". The simplices
+        are the same with each.
     threads: the most threads to use (None: all cores). The result does not
         depend on it.
 
@@ -90,7 +92,7 @@ class Delaunay:
 
     @property
     def statistics(self):
-        """Counters of the run: the engine that built the simplices ("dewall", "hybrid" or "cgal"),
+        """Counters of the run: the engine that built the simplices ("dewall", "hybrid", "incremental" or "cgal"),
         distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`)."""
         return self._triangulation.statistics
 

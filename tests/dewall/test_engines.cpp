@@ -58,10 +58,11 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
   const auto expected = dewall::test::cgal_delaunay<D>(points);
   const auto forced = dewall::triangulate<D>(points, Options{.engine = Engine::dewall});
   const auto incremental = dewall::triangulate<D>(points, Options{.engine = Engine::cgal});
+  const auto own = dewall::triangulate<D>(points, Options{.engine = Engine::incremental});
   const auto automatic = dewall::triangulate<D>(points, Options{.region_points = region_points.value_or(40)});
   const auto one_region = dewall::triangulate<D>(points);
-  CHECK(one_region.statistics.engine == Engine::cgal);
-  CHECK(one_region.simplices == incremental.simplices);
+  CHECK(one_region.statistics.engine == dewall::default_incremental_engine(D));
+  CHECK(one_region.simplices == (dewall::default_incremental_engine(D) == Engine::cgal ? incremental : own).simplices);
   if (region_points) {
     // The same output, in the same order, on one thread.
     const auto hybrid =
@@ -73,6 +74,14 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
     CHECK(hybrid.simplices == hybrid_serial.simplices);
     CHECK(positively_oriented<D>(points, hybrid.simplices));
     CHECK(hybrid.statistics.engine == Engine::hybrid);
+    // The regions built by the other incremental construction: the same
+    // simplices (in that construction's order within each region).
+    const Engine other = dewall::default_incremental_engine(D) == Engine::cgal ? Engine::incremental : Engine::cgal;
+    const auto hybrid_other = dewall::triangulate<D>(
+        points, Options{.engine = Engine::hybrid, .incremental_engine = other, .region_points = *region_points});
+    CHECK(dewall::test::as_set<D>(hybrid_other.simplices) == expected);
+    CHECK(hybrid_other.simplices.size() == expected.size());
+    CHECK(positively_oriented<D>(points, hybrid_other.simplices));
   }
   CHECK(dewall::test::as_set<D>(forced.simplices) == expected);
   CHECK(dewall::test::as_set<D>(incremental.simplices) == expected);
@@ -80,6 +89,10 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
   CHECK(incremental.simplices.size() == expected.size());
   CHECK(automatic.simplices.size() == expected.size());
   CHECK(positively_oriented<D>(points, incremental.simplices));
+  CHECK(dewall::test::as_set<D>(own.simplices) == expected);
+  CHECK(own.simplices.size() == expected.size());
+  CHECK(positively_oriented<D>(points, own.simplices));
+  CHECK(own.statistics.engine == Engine::incremental);
   CHECK(forced.statistics.engine == Engine::dewall);
   CHECK(incremental.statistics.engine == Engine::cgal);
   CHECK(incremental.statistics.distinct_points == forced.statistics.distinct_points);
@@ -91,9 +104,9 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
 TEST_CASE("engines: points on a sphere hand over to the incremental construction", "[engine]") {
   // Every search examines about half the points: DeWall is quadratic here,
   // and so are the hybrid's walls and region filter (checked below, smaller).
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 600, 5), {}) == Engine::cgal);
-  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 600, 0), {}) == Engine::cgal);
-  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6), {}) == Engine::cgal);
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::sphere, 600, 5), {}) == dewall::default_incremental_engine(3));
+  CHECK(check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 600, 0), {}) == dewall::default_incremental_engine(3));
+  CHECK(check_engines<2>(generated<2>(dewall::io::Point_kind::sphere, 3000, 6), {}) == dewall::default_incremental_engine(2));
   // Exactly cospherical regions: every cell's sphere is the whole sphere.
   check_engines<3>(generated<3>(dewall::io::Point_kind::lattice_sphere, 150, 0));
 }
@@ -111,7 +124,7 @@ TEST_CASE("engines: regions whose spheres leave them hand over, others do not", 
   const auto layers = generated<3>(dewall::io::Point_kind::planes, 12000, 17, 2);
   const auto expected = dewall::test::cgal_delaunay<3>(layers);
   const auto t = dewall::triangulate<3>(layers, Options{.region_points = 3000});
-  CHECK(t.statistics.engine == Engine::cgal);
+  CHECK(t.statistics.engine == dewall::default_incremental_engine(3));
   CHECK(t.statistics.searches_before_handover >= 1);
   CHECK(dewall::test::as_set<3>(t.simplices) == expected);
   CHECK(dewall::triangulate<3>(layers, Options{.engine = Engine::hybrid, .region_points = 3000}).statistics.engine ==
@@ -228,7 +241,7 @@ TEST_CASE("engines: a stream settled at its first region never hands over", "[en
   const auto collected = dewall::triangulate<3>(points, options);
   dewall::Statistics st;
   const auto serial = streamed<3>(points, options, &st);
-  CHECK(collected.statistics.engine == Engine::cgal);
+  CHECK(collected.statistics.engine == dewall::default_incremental_engine(3));
   CHECK(st.engine == Engine::hybrid);
   CHECK(dewall::test::as_set<3>(serial) == dewall::test::as_set<3>(collected.simplices));
   CHECK(serial.size() == collected.simplices.size());
@@ -348,7 +361,7 @@ TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") 
   // spent: 4^(d-2)·n = 8000 candidates here, a few hundred searches of ~10 candidates
   // (forced DeWall makes about 25,000 searches on these points).
   const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5, .region_points = 100});
-  CHECK(t.statistics.engine == Engine::cgal);
+  CHECK(t.statistics.engine == dewall::default_incremental_engine(3));
   CHECK(t.statistics.searches_before_handover >= 1);
   CHECK(t.statistics.searches_before_handover <= 1000);
   CHECK(dewall::test::as_set<3>(t.simplices) == dewall::test::cgal_delaunay<3>(points));
@@ -359,9 +372,17 @@ TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") 
       [&](const dewall::Simplex<3>&, int level) { highest = std::max(highest, level); },
       Options{.engine = Engine::cgal});
   CHECK(highest == 0);
+  dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(
+      std::span<const dewall::kernel::Point_d<3>>(points),
+      [&](const dewall::Simplex<3>&, int level) { highest = std::max(highest, level); },
+      Options{.engine = Engine::incremental});
+  CHECK(highest == 0);
   // Bad input is reported the same way by every engine.
   const std::vector<dewall::kernel::Point_d<3>> flat{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}, {{1, 1, 0}}};
   CHECK_THROWS_AS(dewall::triangulate<3>(flat, Options{.engine = Engine::cgal}), dewall::Invalid_input);
+  CHECK_THROWS_AS(dewall::triangulate<3>(flat, Options{.engine = Engine::incremental}), dewall::Invalid_input);
+  // The regions' construction must be an incremental one.
+  CHECK_THROWS_AS(dewall::triangulate<3>(points, Options{.incremental_engine = Engine::dewall}), std::invalid_argument);
   CHECK_THROWS_AS(dewall::triangulate<3>(flat), dewall::Invalid_input);
 }
 
@@ -385,7 +406,7 @@ TEST_CASE("engines: DeWall over the kernel archetype (the concept and nothing el
 TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {
   struct User_kernel : dewall::kernel::Filtered_kernel_d<2> {};
   const std::vector<dewall::kernel::Point_d<2>> points{{{0, 0}}, {{1, 0}}, {{0, 1}}};
-  for (Engine e : {Engine::cgal, Engine::hybrid})
+  for (Engine e : {Engine::cgal, Engine::incremental, Engine::hybrid})
     CHECK_THROWS_AS(
         dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points), Options{.engine = e}),
         std::invalid_argument);

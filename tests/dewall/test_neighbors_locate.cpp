@@ -149,5 +149,6 @@ TEST_CASE("parse_engine names the engines the CLI and Python accept", "[python]"
   CHECK(dewall::parse_engine("auto") == dewall::Engine::automatic);
   CHECK(dewall::parse_engine("dewall") == dewall::Engine::dewall);
   CHECK(dewall::parse_engine("cgal") == dewall::Engine::cgal);
+  CHECK(dewall::parse_engine("incremental") == dewall::Engine::incremental);
   CHECK(!dewall::parse_engine("automatic"));
 }

@@ -19,6 +19,7 @@
 
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
+#include "dewall/kernel/static_filter.hpp"
 #include "support/gmp_reference.hpp"
 #include "support/point_generators.hpp"
 
@@ -36,7 +37,8 @@ constexpr int mismatches_shown = 3;
 /// Counts per family: disagreements (with the first few inputs kept) and how
 /// far down the cascade the inputs went.
 struct Tally {
-  int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, scaled_undecided = 0, exact_zero = 0;
+  int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, scaled_undecided = 0, exact_zero = 0,
+      static_undecided = 0;
   std::string report;
 
   template <int D>
@@ -56,6 +58,26 @@ struct Tally {
     else ++undecided;
   }
 };
+
+/// The static filter (static_filter.hpp) with the bound of the points' own
+/// box, or (`wide`) of that box joined with [-1, 1]^D: the calls of an
+/// incremental construction see a few close points in a large box.
+template <int D>
+Static_filter_d<D> static_filter_of(const std::vector<Point<D>>& points, bool wide = false) {
+  std::array<double, D> lo = points[0].x, hi = points[0].x;
+  if (wide) {
+    for (int j = 0; j < D; ++j) {
+      lo[static_cast<std::size_t>(j)] = std::min(lo[static_cast<std::size_t>(j)], -1.0);
+      hi[static_cast<std::size_t>(j)] = std::max(hi[static_cast<std::size_t>(j)], 1.0);
+    }
+  }
+  for (const auto& p : points)
+    for (int j = 0; j < D; ++j) {
+      lo[static_cast<std::size_t>(j)] = std::min(lo[static_cast<std::size_t>(j)], p[j]);
+      hi[static_cast<std::size_t>(j)] = std::max(hi[static_cast<std::size_t>(j)], p[j]);
+    }
+  return Static_filter_d<D>(lo, hi);
+}
 
 template <int D>
 void check_orientation(const std::vector<Point<D>>& points, Degeneracy degeneracy, Tally& tally) {
@@ -78,6 +100,10 @@ void check_orientation(const std::vector<Point<D>>& points, Degeneracy degenerac
   double ignored;
   tally.check_stage<D>("orientation filter on points scaled by 2^s", expected,
                        stages::filter_scaled<Orientation_recipe<D>, D>(refs, &ignored), tally.scaled_undecided, points);
+  tally.check_stage<D>("orientation static filter", expected, static_filter_of<D>(points).orientation(refs),
+                       tally.static_undecided, points);
+  tally.check_stage<D>("orientation static filter, wide box", expected,
+                       static_filter_of<D>(points, true).orientation(refs), tally.static_undecided, points);
   std::swap(refs[0], refs[1]);  // an odd permutation flips the sign
   tally.check<D>("orientation_d, p_0 and p_1 swapped", -expected, orientation_d<D>(refs), points);
 }
@@ -104,6 +130,10 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
   tally.check_stage<D>("sphere filter on points scaled by 2^s", expected,
                        stages::filter_scaled<Side_of_sphere_recipe<D>, D>(refs, &ignored), tally.scaled_undecided,
                        points);
+  tally.check_stage<D>("sphere static filter", expected, static_filter_of<D>(points).side_of_oriented_sphere(refs),
+                       tally.static_undecided, points);
+  tally.check_stage<D>("sphere static filter, wide box", expected,
+                       static_filter_of<D>(points, true).side_of_oriented_sphere(refs), tally.static_undecided, points);
   std::swap(refs[0], refs[D]);  // an odd permutation of the simplex flips the sign
   tally.check<D>("side_of_oriented_sphere_d, p_0 and p_D swapped", -expected, side_of_oriented_sphere_d<D>(refs),
                  points);
@@ -238,4 +268,31 @@ TEST_CASE("predicate stats count the deciding stage", "[stats]") {
     CHECK(s.perturbed == 1);
     CHECK(s.calls() == 2);
   }
+}
+
+TEMPLATE_TEST_CASE_SIG("the static filter decides most calls on spread points, and never wrongly", "[predicates]",
+                       ((int D), D), 2, 3) {
+  Rng rng(0x57a71c + D);
+  std::array<double, D> lo, hi;
+  lo.fill(-1);
+  hi.fill(1);
+  const Static_filter_d<D> filter(lo, hi);
+  REQUIRE(filter.valid());
+  int decided = 0, cases = 2000;
+  for (int c = 0; c < cases; ++c) {
+    const auto points = dewall::test::uniform_points<D>(rng, D + 2);
+    Sphere_points<D> refs;
+    Orientation_points<D> simplex;
+    for (int i = 0; i <= D + 1; ++i) refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+    for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+    const auto o = filter.orientation(simplex);
+    const auto s = filter.side_of_oriented_sphere(refs);
+    if (o && s) ++decided;
+    if (o) CHECK(*o == orientation_d<D>(simplex));
+    if (s) CHECK(*s == side_of_oriented_sphere_d<D>(refs));
+  }
+  CHECK(decided > cases * 9 / 10);
+  // Outside the domain (a box wider than 2^100) it never decides.
+  hi[0] = 0x1p101;
+  CHECK(!Static_filter_d<D>(lo, hi).valid());
 }

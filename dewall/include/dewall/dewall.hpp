@@ -82,7 +82,7 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
                   "your flags are.");
     return {};
 #else
-    if (options.engine == Engine::cgal || options.engine == Engine::hybrid)
+    if (options.engine == Engine::cgal || options.engine == Engine::incremental || options.engine == Engine::hybrid)
       throw std::invalid_argument(std::string("dewall: Engine::") + engine_name(options.engine) +
                                   " needs the project's kernel (Filtered_kernel_d)");
     return triangulate_generic<K>(k, points, options, output);

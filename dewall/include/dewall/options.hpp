@@ -18,14 +18,20 @@ enum class Engine {
   /// input of at most one region's size (Options::region_points: 16384 distinct
   /// points by default) is one region, built by the incremental construction
   /// alone (a wall and two half regions cost more on one thread and gain
-  /// little on two). In 4D and up, the incremental construction (the hybrid's
-  /// regions are CGAL's dD triangulation there, and the walls only add to it).
+  /// little on two). In 4D and up, the incremental construction alone (the
+  /// walls only add to it there).
+  /// "The incremental construction" is the project's own (Engine::incremental)
+  /// where it is measured faster than CGAL's, CGAL's (Engine::cgal) elsewhere:
+  /// see default_incremental_engine.
   automatic,
   /// DeWall only: walls all the way down (the paper's algorithm).
   dewall,
   /// CGAL's incremental construction only (Delaunay_triangulation_2/_3, the dD
   /// Delaunay_triangulation), compiled into the library.
   cgal,
+  /// The project's own incremental construction only (Bowyer–Watson over the
+  /// project's kernel: dewall/detail/incremental_delaunay.hpp).
+  incremental,
   /// DeWall's walls down to regions of Options::region_points points, each
   /// region triangulated by the incremental construction and the simplices
   /// whose spheres hold no point of the other regions kept (no merge step:
@@ -34,26 +40,36 @@ enum class Engine {
   hybrid,
 };
 
-/// "automatic", "dewall", "cgal" or "hybrid".
+/// The incremental construction Engine::automatic and the hybrid's regions
+/// use in dimension D: the project's own where it is faster than CGAL's on
+/// one thread (4D and up: half CGAL dD's time on uniform points), CGAL's in 2D
+/// and 3D until ours passes it there (docs/engines.md has the measurements).
+constexpr Engine default_incremental_engine(int dimension) {
+  return dimension >= 4 ? Engine::incremental : Engine::cgal;
+}
+
+/// "automatic", "dewall", "cgal", "incremental" or "hybrid".
 constexpr const char* engine_name(Engine e) {
   switch (e) {
     case Engine::automatic: return "automatic";
     case Engine::dewall: return "dewall";
     case Engine::cgal: return "cgal";
+    case Engine::incremental: return "incremental";
     case Engine::hybrid: return "hybrid";
   }
   return "?";
 }
 
 /// The names parse_engine accepts, for messages.
-inline constexpr const char* engine_choices = "auto, dewall, hybrid or cgal";
+inline constexpr const char* engine_choices = "auto, dewall, hybrid, incremental or cgal";
 
-/// The engine a user names: "auto", "dewall", "cgal" or "hybrid" (the CLI's
+/// The engine a user names: "auto", "dewall", "cgal", "incremental" or "hybrid" (the CLI's
 /// --engine and the Python bindings' engine=), or nothing for any other name.
 constexpr std::optional<Engine> parse_engine(std::string_view name) {
   if (name == "auto") return Engine::automatic;
   if (name == "dewall") return Engine::dewall;
   if (name == "cgal") return Engine::cgal;
+  if (name == "incremental") return Engine::incremental;
   if (name == "hybrid") return Engine::hybrid;
   return std::nullopt;
 }
@@ -71,6 +87,12 @@ struct Options {
   /// The construction. Engines other than DeWall need the project's kernel
   /// (Filtered_kernel_d); with another kernel, automatic means DeWall.
   Engine engine = Engine::automatic;
+  /// The incremental construction that builds the hybrid's regions and what
+  /// Engine::automatic leaves to one: Engine::incremental (the project's own),
+  /// Engine::cgal, or Engine::automatic for default_incremental_engine(D).
+  /// Any other value is refused (std::invalid_argument). The simplices are
+  /// the same with each.
+  Engine incremental_engine = Engine::automatic;
   /// Engine::automatic hands over to the incremental construction once the
   /// searches of any task of DeWall's recursion have cost more than this many
   /// candidate points per search on average, a predicate evaluation that the

@@ -18,7 +18,10 @@
 //    (cell << facet_bits | facet index in that neighbour), positively oriented;
 //  * one infinite vertex closing the hull: a hull facet's outer neighbour is an
 //    infinite cell, so every point outside the hull has a cavity like any other;
-//  * slots of cells a cavity destroys are reused by the new cells.
+//  * slots of cells a cavity destroys are reused by the new cells;
+//  * in 2D and 3D a static filter whose bound comes once from the points' box
+//    (kernel/static_filter.hpp) in front of the kernel's semi-static filter,
+//    interval and exact stages.
 //
 // Steps:
 //  1. Order: BRIO rounds along a Hilbert curve (spatial_order.hpp).
@@ -48,6 +51,9 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "dewall/detail/assert.hpp"
@@ -58,6 +64,7 @@
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
+#include "dewall/kernel/static_filter.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
@@ -84,22 +91,57 @@ class Incremental_delaunay {
   /// Bits of a neighbour reference that hold the facet index.
   static constexpr int facet_bits = std::bit_width(static_cast<unsigned>(D));
 
-  /// Triangulates `points` (distinct, finite). Returns false, having built
-  /// nothing, when they do not span E^D. `ids`, when not empty, are the ids
-  /// the points have for the caller (input_index returns them).
-  bool build(std::span<const Point> points, std::span<const Index> ids = {}) {
-    const std::size_t n = points.size();
-    if (n < static_cast<std::size_t>(D + 1)) return false;
-    std::vector<std::uint32_t> order = brio_order<D>(n, [&](std::size_t i) -> const auto& { return points[i].x; });
-    if (!start(points, order)) return false;
-    points_.resize(n);
-    input_.resize(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      points_[k] = points[order[k]];
-      input_[k] = ids.empty() ? order[k] : ids[order[k]];
+  /// Triangulates `count` points (distinct, finite): point k's coordinates
+  /// are coordinates(k) (an array of D doubles), its id for the caller id(k)
+  /// (input_index returns it). Returns false, having built nothing, when the
+  /// points do not span E^D.
+  template <class Coordinates, class Id>
+  bool build(std::size_t count, Coordinates&& coordinates, Id&& id) {
+    if (count < static_cast<std::size_t>(D + 1)) return false;
+    std::vector<std::uint32_t> order = brio_order<D>(count, coordinates);
+    {
+      std::array<double, D> lo = coordinates(0), hi = coordinates(0);
+      for (std::size_t k = 1; k < count; ++k)
+        for (int j = 0; j < D; ++j) {
+          lo[j] = std::min(lo[j], coordinates(k)[j]);
+          hi[j] = std::max(hi[j], coordinates(k)[j]);
+        }
+      static_filter_ = kernel::Static_filter_d<D>(lo, hi);
     }
-    for (std::size_t k = D + 1; k < n; ++k) insert(static_cast<Index>(k));
+    if (!start(coordinates, order)) return false;
+    points_.resize(count);
+    input_.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+      points_[k].x = coordinates(order[k]);
+      input_[k] = static_cast<Index>(id(order[k]));
+    }
+    std::vector<std::uint32_t>().swap(order);
+    for (std::size_t k = D + 1; k < count; ++k) {
+      insert(static_cast<Index>(k));
+      if (check_each_insertion && !is_valid())
+        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
+    }
     return true;
+  }
+
+  /// Tests: run is_valid() after every insertion (O(n) each), throwing
+  /// std::logic_error at the first failure.
+  bool check_each_insertion = false;
+
+  /// Tests: the cells in conflict with q (not a vertex), as insertion would
+  /// find them (the walk, then the breadth-first search), sorted.
+  std::vector<std::size_t> cavity(const Point& q) {
+    find_cavity(q, infinite);
+    std::vector<std::size_t> cells = cavity_;
+    std::sort(cells.begin(), cells.end());
+    return cells;
+  }
+  /// Tests: whether cell c is in conflict with q (see in_conflict).
+  bool conflicts(std::size_t c, const Point& q) const { return in_conflict(c, q); }
+  /// build() for points given as Point_d, their ids their positions.
+  bool build(std::span<const Point> points) {
+    return build(points.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[k].x; },
+                 [](std::size_t k) { return k; });
   }
 
   /// Cell slots, free ones included: cells are 0 … slots() − 1.
@@ -149,6 +191,7 @@ class Incremental_delaunay {
   kernel::Sign orientation(std::size_t c, int replaced, const Point* q) const {
     kernel::Point_refs<D, D + 1> refs;
     for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c][k]];
+    if (const auto s = static_filter_.orientation(refs)) return *s;
     return kernel::orientation_d<D>(refs);
   }
 
@@ -157,6 +200,7 @@ class Incremental_delaunay {
     kernel::Point_refs<D, D + 2> refs;
     for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c][k]];
     refs[D + 1] = &q;
+    if (const auto s = static_filter_.side_of_oriented_sphere(refs)) return *s == kernel::POSITIVE;
     return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
   }
 
@@ -178,12 +222,13 @@ class Incremental_delaunay {
 
   /// Steps 1–2: the first simplex and its D + 1 infinite neighbours; `order`
   /// becomes the insertion order with the simplex's points first.
-  bool start(std::span<const Point> points, std::vector<std::uint32_t>& order) {
-    Affine_basis<D> basis(points[order[0]].x);
+  template <class Coordinates>
+  bool start(Coordinates&& coordinates, std::vector<std::uint32_t>& order) {
+    Affine_basis<D> basis(coordinates(order[0]));
     std::vector<std::uint32_t> simplex{order[0]}, passed_over;
     std::size_t k = 1;
     for (; k < order.size() && basis.rank() < D; ++k) {
-      if (basis.add(points[order[k]].x)) simplex.push_back(order[k]);
+      if (basis.add(coordinates(order[k]))) simplex.push_back(order[k]);
       else passed_over.push_back(order[k]);
     }
     if (basis.rank() < D) return false;
@@ -192,7 +237,7 @@ class Incremental_delaunay {
                        std::copy_backward(passed_over.begin(), passed_over.end(), order.begin() + static_cast<std::ptrdiff_t>(k)));
 
     points_.resize(D + 1);
-    for (int i = 0; i <= D; ++i) points_[i] = points[order[i]];
+    for (int i = 0; i <= D; ++i) points_[i].x = coordinates(order[i]);
     Cell first;
     for (int i = 0; i <= D; ++i) first[i] = static_cast<Index>(i);
     cells_.assign(1, first);
@@ -220,6 +265,7 @@ class Incremental_delaunay {
         neighbors_[ca][ia] = reference(cb, ib);
         neighbors_[cb][ib] = reference(ca, ia);
       }
+    free_.clear();
     finite_cells_ = 1;
     last_ = 0;
     mark_.assign(cells_.size(), 0);
@@ -268,9 +314,9 @@ class Incremental_delaunay {
     std::uint32_t outside;
   };
 
-  /// Step 3: inserts vertex v (points_[v]).
-  void insert(Index v) {
-    const Point& q = points_[v];
+  /// Steps 3a–b: cavity_ holds the cells in conflict with q, boundary_ the
+  /// facets around them with the new cells' vertices (q as vertex v).
+  void find_cavity(const Point& q, Index v) {
     const std::size_t start_cell = locate(q);
     DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
 
@@ -304,6 +350,11 @@ class Incremental_delaunay {
         boundary_.push_back(f);
       }
     }
+  }
+
+  /// Step 3: inserts vertex v (points_[v]).
+  void insert(Index v) {
+    find_cavity(points_[v], v);
 
     // 3c. The star: slots of the cavity first, then free ones, then new ones.
     stats_.conflict_cells += cavity_.size();
@@ -349,37 +400,57 @@ class Incremental_delaunay {
     }
   }
 
-  using Ridge = std::array<Index, D - 1>;
-  /// The vertices of cell w other than those at positions a and b, sorted.
+  /// The D − 1 vertices of a facet through the new point other than it: in 2D
+  /// and 3D packed in one integer (smaller first), above sorted in an array.
+  using Ridge = std::conditional_t<(D <= 3), std::uint64_t, std::array<Index, D - 1>>;
+  /// The vertices of cell w other than those at positions a and b.
   static Ridge ridge_key(const Cell& w, int a, int b) {
-    Ridge r;
+    std::array<Index, D - 1> r;
     int k = 0;
     for (int i = 0; i <= D; ++i)
       if (i != a && i != b) r[k++] = w[i];
-    std::sort(r.begin(), r.end());
-    return r;
+    if constexpr (D == 2) {
+      return r[0];
+    } else if constexpr (D == 3) {
+      const auto [lo, hi] = std::minmax(r[0], r[1]);
+      return std::uint64_t{lo} << 32 | hi;
+    } else {
+      std::sort(r.begin(), r.end());
+      return r;
+    }
+  }
+  static std::uint64_t ridge_hash(const Ridge& key) {
+    if constexpr (D <= 3) {
+      return key * 0x9e3779b97f4a7c15ull;
+    } else {
+      std::uint64_t h = 0;
+      for (Index x : key) h = (h ^ x) * 0x9e3779b97f4a7c15ull;
+      return h;
+    }
   }
 
   /// The facets through the new point, matched in pairs by their other D − 1
-  /// vertices: open addressing, sized per insertion, never shrunk.
+  /// vertices: open addressing; a slot is empty unless stamped with the
+  /// current insertion, so nothing is cleared between insertions.
   class Ridge_table {
    public:
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    /// Starts an insertion that parks at most `entries` ridges.
     void begin(std::size_t entries) {
-      std::size_t size = 16;
-      while (size < 2 * entries) size *= 2;
-      if (slots_.size() < size) slots_.resize(size);
-      mask_ = size - 1;
-      std::fill(slots_.begin(), slots_.begin() + static_cast<std::ptrdiff_t>(size), Slot{{}, none});
+      if (++stamp_ == 0 || slots_.size() < 2 * entries) {
+        std::size_t size = std::max<std::size_t>(slots_.size(), 256);
+        while (size < 2 * entries) size *= 2;
+        slots_.assign(size, Slot{});
+        mask_ = size - 1;
+        stamp_ = 1;
+      }
     }
     /// The reference parked under `key`, removed; or parks `ref` and returns none.
     std::uint32_t match_or_park(const Ridge& key, std::uint32_t ref) {
-      std::uint64_t h = 0;
-      for (Index x : key) h = (h ^ x) * 0x9e3779b97f4a7c15ull;
-      for (std::size_t i = (h >> 32) & mask_;; i = (i + 1) & mask_) {
+      for (std::size_t i = (ridge_hash(key) >> 40) & mask_;; i = (i + 1) & mask_) {
         Slot& s = slots_[i];
-        if (s.ref == none) {
-          s = {key, ref};
+        if (s.stamp != stamp_) {
+          s = {key, ref, stamp_};
           return none;
         }
         if (s.ref != taken && s.key == key) {
@@ -393,11 +464,13 @@ class Incremental_delaunay {
    private:
     static constexpr std::uint32_t taken = none - 1;
     struct Slot {
-      Ridge key;
-      std::uint32_t ref;
+      Ridge key{};
+      std::uint32_t ref = none;
+      std::uint32_t stamp = 0;
     };
     std::vector<Slot> slots_;
     std::size_t mask_ = 0;
+    std::uint32_t stamp_ = 0;
   };
 
   std::vector<Point> points_;    // by vertex id (insertion order)
@@ -413,6 +486,7 @@ class Incremental_delaunay {
   std::vector<Boundary_facet> boundary_;
   Ridge_table ridges_;
   Incremental_statistics stats_;
+  kernel::Static_filter_d<D> static_filter_;  // from the points' box: in front of the kernel's cascade
 };
 
 }  // namespace dewall::detail

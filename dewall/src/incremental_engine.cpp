@@ -1,0 +1,91 @@
+// detail::triangulate_incremental and incremental_region_cells for D = 2 … 6
+// (incremental_engine.hpp).
+#include "incremental_engine.hpp"
+
+#include <cstdint>
+#include <vector>
+
+#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
+#include "incremental_support.hpp"
+
+namespace dewall::detail {
+namespace {
+
+/// An Incremental_delaunay as the cell graph filter_region walks
+/// (incremental_support.hpp); the walk's states in an array of their own.
+template <int D>
+struct Incremental_graph {
+  using Cell = std::uint32_t;
+  const Incremental_delaunay<D>& dt;
+  std::vector<std::int32_t> states = std::vector<std::int32_t>(dt.slots());
+
+  template <class F>
+  void for_each_cell(F&& f) const {
+    for (std::size_t c = 0; c < dt.slots(); ++c)
+      if (!dt.is_free(c)) f(static_cast<Cell>(c));
+  }
+  std::size_t finite_cells() const { return dt.finite_cells(); }
+  bool is_infinite(Cell c) const { return dt.is_infinite(c); }
+  Cell neighbor(Cell c, int i) const { return static_cast<Cell>(dt.neighbor(c, i)); }
+  bool vertex_is_infinite(Cell c, int i) const {
+    return dt.cell(c)[static_cast<std::size_t>(i)] == Incremental_delaunay<D>::infinite;
+  }
+  std::int32_t& state(Cell c) { return states[c]; }
+  Simplex<D> vertices(Cell c) const {
+    Simplex<D> s;
+    for (int i = 0; i <= D; ++i) s[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+    return s;
+  }
+};
+
+}  // namespace
+
+template <int D>
+Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
+                                   const std::vector<std::size_t>* given_distinct) {
+  const kernel::Fp_environment_guard guard;
+  const std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
+  Incremental_delaunay<D> dt;
+  const bool built = dt.build(
+      distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
+      [&](std::size_t k) { return distinct[k]; });
+  DEWALL_ASSERT(built);  // the points span E^D: checked above
+  Block_writer<D> writer(output, dt.finite_cells());
+  const Incremental_graph<D> graph{dt};
+  for (std::size_t c = 0; c < dt.slots(); ++c)
+    if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(graph.vertices(static_cast<std::uint32_t>(c)));
+  Statistics st;
+  st.input_points = points.size();
+  st.distinct_points = distinct.size();
+  st.simplices = writer.finish();
+  st.engine = Engine::incremental;
+  return st;
+}
+
+template <int D>
+bool incremental_region_cells(std::span<const Index> region, const std::vector<Coords<D>>& coords,
+                              Region_filter<D>& filter) {
+  const kernel::Fp_environment_guard guard;
+  Incremental_delaunay<D> dt;
+  if (!dt.build(
+          region.size(), [&](std::size_t k) -> const Coords<D>& { return coords[region[k]]; },
+          [&](std::size_t k) { return region[k]; }))
+    return false;
+  Incremental_graph<D> graph{dt};
+  filter_region<D>(graph, false, filter);  // its cells are positively oriented
+  return true;
+}
+
+#define DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(D)                                                            \
+  template Statistics triangulate_incremental<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,    \
+                                                 const std::vector<std::size_t>*);                           \
+  template bool incremental_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,           \
+                                            Region_filter<D>&);
+DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(2)
+DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(3)
+DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(4)
+DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(5)
+DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(6)
+
+}  // namespace dewall::detail

@@ -1,0 +1,198 @@
+// The project's own incremental engine (detail/incremental_delaunay.hpp) piece
+// by piece: the Hilbert index and the BRIO order, the data structure after
+// every insertion, the cavity against every cell's own conflict test, and the
+// triangulation against CGAL's in 2D–6D on random, lattice, cospherical,
+// flat-layered and extreme-scale points.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <set>
+#include <vector>
+
+#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/detail/spatial_order.hpp"
+#include "dewall/kernel/side_of_sphere.hpp"
+#include "support/cgal_reference.hpp"
+#include "support/dewall_point_sets.hpp"
+
+namespace {
+
+using dewall::detail::Incremental_delaunay;
+using Point3 = dewall::kernel::Point_d<3>;
+
+/// The engine's finite cells as sorted input-index tuples (duplicates
+/// removed first, first occurrence kept, as the library does).
+template <int D>
+dewall::test::Simplex_set<D> incremental_delaunay(const std::vector<dewall::kernel::Point_d<D>>& points,
+                                                  bool check_each_insertion = false) {
+  std::set<std::array<double, D>> seen;
+  std::vector<std::size_t> distinct;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (seen.insert(points[i].x).second) distinct.push_back(i);
+  Incremental_delaunay<D> dt;
+  dt.check_each_insertion = check_each_insertion;
+  dewall::test::Simplex_set<D> out;
+  if (!dt.build(
+          distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
+          [&](std::size_t k) { return distinct[k]; }))
+    return out;
+  CHECK(dt.is_valid());
+  std::size_t finite = 0;
+  for (std::size_t c = 0; c < dt.slots(); ++c) {
+    if (dt.is_free(c) || dt.is_infinite(c)) continue;
+    ++finite;
+    std::array<std::uint32_t, D + 1> t;
+    for (int i = 0; i <= D; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+    std::sort(t.begin(), t.end());
+    out.insert(t);
+  }
+  CHECK(finite == dt.finite_cells());
+  CHECK(out.size() == finite);
+  return out;
+}
+
+template <int D>
+void check_against_cgal(const std::vector<dewall::kernel::Point_d<D>>& points, bool check_each_insertion = false) {
+  const auto expected = dewall::test::cgal_delaunay<D>(points);
+  const auto ours = incremental_delaunay<D>(points, check_each_insertion);
+  CHECK(ours.size() == expected.size());
+  CHECK(ours == expected);
+}
+
+template <int D>
+void check_families(std::size_t n, std::mt19937_64& rng) {
+  check_against_cgal<D>(dewall::test::uniform<D>(n, rng));
+  check_against_cgal<D>(dewall::test::lattice<D>(n));                 // every point ties with many
+  check_against_cgal<D>(dewall::test::lattice_samples<D>(n, 4, rng)); // ties and duplicates, random order
+  check_against_cgal<D>(dewall::test::cospherical<D>(false));
+  check_against_cgal<D>(dewall::test::cospherical<D>(true));
+  check_against_cgal<D>(dewall::test::planes<D>(n, 2, rng));
+  // 2^±600: beyond the floating-point filter's domain, the scaled filter and the exact stage decide.
+  check_against_cgal<D>(dewall::test::scaled<D>(dewall::test::lattice_samples<D>(n, 4, rng), 0x1p-600, 0));
+  check_against_cgal<D>(dewall::test::scaled<D>(dewall::test::lattice_samples<D>(n, 4, rng), 0x1p600, 0x1p601));
+}
+
+}  // namespace
+
+TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring cells", "[incremental]") {
+  // 2D, 8×8 grid; 3D, 4×4×4: consecutive indices are cells sharing a facet.
+  auto check = [](auto dimension, int bits) {
+    constexpr int D = decltype(dimension)::value;
+    const std::uint32_t side = 1u << bits;
+    std::vector<std::array<std::uint32_t, D>> at(std::size_t{1} << (D * bits));
+    std::vector<bool> seen(at.size(), false);
+    std::array<std::uint32_t, D> x{};
+    for (std::size_t cell = 0; cell < at.size(); ++cell) {
+      std::size_t rest = cell;
+      for (int j = 0; j < D; ++j, rest /= side) x[static_cast<std::size_t>(j)] = static_cast<std::uint32_t>(rest % side);
+      const std::uint64_t h = dewall::detail::hilbert_index<D>(x, bits);
+      REQUIRE(h < at.size());
+      CHECK(!seen[h]);
+      seen[h] = true;
+      at[h] = x;
+    }
+    for (std::size_t h = 1; h < at.size(); ++h) {
+      int distance = 0;
+      for (int j = 0; j < D; ++j)
+        distance += std::abs(static_cast<int>(at[h][static_cast<std::size_t>(j)]) - static_cast<int>(at[h - 1][static_cast<std::size_t>(j)]));
+      CHECK(distance == 1);
+    }
+  };
+  check(std::integral_constant<int, 2>{}, 3);
+  check(std::integral_constant<int, 3>{}, 2);
+  check(std::integral_constant<int, 4>{}, 2);
+}
+
+TEST_CASE("incremental: the BRIO order is a permutation, the same on every run", "[incremental]") {
+  std::mt19937_64 rng(31);
+  for (std::size_t n : {0, 1, 2, 999, 1000, 1001, 5000}) {
+    const auto points = dewall::test::uniform<3>(n, rng);
+    auto coords = [&](std::size_t i) -> const std::array<double, 3>& { return points[i].x; };
+    const auto order = dewall::detail::brio_order<3>(n, coords);
+    auto sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < n; ++i) CHECK(sorted[i] == i);
+    CHECK(dewall::detail::brio_order<3>(n, coords) == order);
+  }
+  // Degenerate extents: all points on one axis line, and coordinates near ±2^1023.
+  std::vector<Point3> line(100), extreme(100);
+  for (std::size_t i = 0; i < 100; ++i) {
+    line[i] = {{static_cast<double>(i), 0, 0}};
+    extreme[i] = {{(i % 2 ? 1 : -1) * 0x1p1023, static_cast<double>(i), 0}};
+  }
+  for (const auto* set : {&line, &extreme}) {
+    auto sorted = dewall::detail::brio_order<3>(100, [&](std::size_t i) -> const auto& { return (*set)[i].x; });
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < 100; ++i) CHECK(sorted[i] == i);
+  }
+}
+
+TEST_CASE("incremental: the structure is valid after every insertion", "[incremental]") {
+  std::mt19937_64 rng(32);
+  check_against_cgal<2>(dewall::test::lattice_samples<2>(300, 6, rng), true);
+  check_against_cgal<3>(dewall::test::uniform<3>(300, rng), true);
+  check_against_cgal<3>(dewall::test::lattice_samples<3>(300, 4, rng), true);
+  check_against_cgal<4>(dewall::test::cospherical<4>(true), true);
+}
+
+TEST_CASE("incremental: the cavity is every cell in conflict, by brute force", "[incremental]") {
+  std::mt19937_64 rng(33);
+  // Lattice points: many queries cospherical with cells or coplanar with hull facets.
+  for (const auto& points : {dewall::test::lattice_samples<3>(400, 5, rng), dewall::test::uniform<3>(400, rng)}) {
+    std::set<std::array<double, 3>> distinct_set;
+    std::vector<Point3> distinct;
+    for (const auto& p : points)
+      if (distinct_set.insert(p.x).second) distinct.push_back(p);
+    Incremental_delaunay<3> dt;
+    REQUIRE(dt.build(distinct));
+    std::vector<Point3> queries = dewall::test::lattice_samples<3>(200, 7, rng);  // inside, on and beyond the hull
+    for (auto& q : queries)
+      for (int j = 0; j < 3; ++j) q[j] -= 1;
+    for (const auto& q : queries) {
+      if (distinct_set.count(q.x)) continue;
+      std::vector<std::size_t> brute;
+      for (std::size_t c = 0; c < dt.slots(); ++c) {
+        if (dt.is_free(c)) continue;
+        // Finite cells: the kernel's perturbed sphere test itself.
+        bool conflict;
+        if (!dt.is_infinite(c)) {
+          dewall::kernel::Point_refs<3, 5> refs;
+          for (int i = 0; i <= 3; ++i) refs[static_cast<std::size_t>(i)] = &distinct[dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)])];
+          refs[4] = &q;
+          conflict = dewall::kernel::side_of_oriented_sphere_d_sos<3>(refs) == dewall::kernel::ON_POSITIVE_SIDE;
+        } else {
+          conflict = dt.conflicts(c, q);
+        }
+        if (conflict) brute.push_back(c);
+      }
+      CHECK(dt.cavity(q) == brute);
+    }
+  }
+}
+
+TEST_CASE("incremental: CGAL's cells in 2D and 3D", "[incremental]") {
+  std::mt19937_64 rng(34);
+  check_families<2>(2000, rng);
+  check_families<3>(1500, rng);
+}
+
+TEST_CASE("incremental: CGAL's cells in 4D, 5D and 6D", "[incremental]") {
+  std::mt19937_64 rng(35);
+  check_families<4>(300, rng);
+  check_families<5>(120, rng);
+  check_families<6>(60, rng);
+}
+
+TEST_CASE("incremental: too few points or a flat set build nothing", "[incremental]") {
+  Incremental_delaunay<3> dt;
+  const std::vector<Point3> three{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}};
+  CHECK(!dt.build(three));
+  std::vector<Point3> flat;
+  for (int i = 0; i < 50; ++i) flat.push_back({{static_cast<double>(i % 7), static_cast<double>(i / 7), 0}});
+  CHECK(!dt.build(flat));
+  flat.push_back({{0.5, 0.5, 1e-300}});  // one point off the plane makes it full-dimensional
+  CHECK(dt.build(flat));
+  CHECK(dt.is_valid());
+}
