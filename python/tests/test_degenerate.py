@@ -53,8 +53,8 @@ def test_canonical_and_equal_to_cli(points, tmp_path):
 
 
 def test_engines_agree(points):
-    sets = {engine: simplex_set(dewall.Delaunay(points, engine=engine).simplices) for engine in ("dewall", "cgal")}
-    assert sets["dewall"] == sets["cgal"]
+    sets = {engine: simplex_set(dewall.Delaunay(points, engine=engine).simplices) for engine in ("dewall", "cgal", "incremental")}
+    assert sets["dewall"] == sets["cgal"] == sets["incremental"]
 
 
 def test_threads_do_not_change_the_output(points):

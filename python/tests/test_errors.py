@@ -72,7 +72,7 @@ def test_integers_that_are_not_doubles():
 
 
 def test_bad_engine_and_threads():
-    with pytest.raises(ValueError, match=r"unknown engine 'qhull' \(auto, dewall, hybrid or cgal\)"):
+    with pytest.raises(ValueError, match=r"unknown engine 'qhull' \(auto, dewall, hybrid, incremental or cgal\)"):
         dewall.Delaunay(cube(), engine="qhull")
     with pytest.raises(ValueError, match="threads must be at least 1"):
         dewall.Delaunay(cube(), threads=0)
