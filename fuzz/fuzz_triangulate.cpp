@@ -34,7 +34,10 @@
 //     the reversed input gives the same simplices (mapped through coordinates);
 //  5. Engine::hybrid with regions of 6 and of 25 points (so that the walls,
 //     the regions' filter and the finishing gift-wrap all run) gives CGAL's
-//     simplices, the same list on one thread.
+//     simplices, the same list on one thread, with the regions built by either
+//     incremental construction;
+//  6. Engine::incremental (the project's own Bowyer–Watson) gives CGAL's
+//     simplices, positively oriented, each once.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -207,6 +210,22 @@ void run(Byte_source& in) {
     const auto h_serial = dewall::triangulate<D>(
         points, dewall::Options{.parallel_depth = 0, .engine = dewall::Engine::hybrid, .region_points = region});
     CHECK_ON(checker, h_serial.simplices == h.simplices);
+    for (const dewall::Engine regions : {dewall::Engine::incremental, dewall::Engine::cgal}) {
+      const auto other = dewall::triangulate<D>(
+          points, dewall::Options{.engine = dewall::Engine::hybrid, .incremental_engine = regions, .region_points = region});
+      CHECK_ON(checker, other.simplices.size() == expected.size());
+      CHECK_ON(checker, dewall::test::as_set<D>(other.simplices) == expected);
+    }
+  }
+
+  // Property 6: the project's own incremental engine.
+  const auto own = dewall::triangulate<D>(points, dewall::Options{.engine = dewall::Engine::incremental});
+  CHECK_ON(checker, own.simplices.size() == expected.size());
+  CHECK_ON(checker, dewall::test::as_set<D>(own.simplices) == expected);
+  for (const auto& s : own.simplices) {
+    std::array<const Point_d<D>*, D + 1> refs;
+    for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
+    CHECK_ON(checker, dewall::kernel::orientation_d<D>(refs) == dewall::kernel::POSITIVE);
   }
 }
 

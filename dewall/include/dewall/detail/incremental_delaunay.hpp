@@ -146,17 +146,17 @@ class Incremental_delaunay {
 
   /// Cell slots, free ones included: cells are 0 … slots() − 1.
   std::size_t slots() const { return cells_.size(); }
-  bool is_free(std::size_t c) const { return cells_[c][0] == free_slot; }
+  bool is_free(std::size_t c) const { return cells_[c].v[0] == free_slot; }
   bool is_infinite(std::size_t c) const { return infinite_position(c) <= D; }
   /// The position of the infinite vertex in cell c, or D + 1 when it is finite.
   int infinite_position(std::size_t c) const {
     for (int i = 0; i <= D; ++i)
-      if (cells_[c][i] == infinite) return i;
+      if (cells_[c].v[i] == infinite) return i;
     return D + 1;
   }
-  const Cell& cell(std::size_t c) const { return cells_[c]; }
+  const Cell& cell(std::size_t c) const { return cells_[c].v; }
   /// The cell across the facet opposite vertex i of c.
-  std::size_t neighbor(std::size_t c, int i) const { return neighbors_[c][i] >> facet_bits; }
+  std::size_t neighbor(std::size_t c, int i) const { return cells_[c].n[i] >> facet_bits; }
   /// The caller's id of vertex v (finite).
   Index input_index(Index v) const { return input_[v]; }
   std::size_t finite_cells() const { return finite_cells_; }
@@ -168,12 +168,12 @@ class Incremental_delaunay {
     for (std::size_t c = 0; c < slots(); ++c) {
       if (is_free(c)) continue;
       for (int i = 0; i <= D; ++i) {
-        const std::uint32_t ref = neighbors_[c][i];
+        const std::uint32_t ref = cells_[c].n[i];
         const std::size_t n = ref >> facet_bits;
         const int j = static_cast<int>(ref & facet_mask);
-        if (n >= slots() || is_free(n) || (neighbors_[n][j] >> facet_bits) != c) return false;
+        if (n >= slots() || is_free(n) || (cells_[n].n[j] >> facet_bits) != c) return false;
         for (int k = 0; k <= D; ++k)
-          if (k != i && std::find(cells_[n].begin(), cells_[n].end(), cells_[c][k]) == cells_[n].end()) return false;
+          if (k != i && std::find(cells_[n].v.begin(), cells_[n].v.end(), cells_[c].v[k]) == cells_[n].v.end()) return false;
       }
       if (!is_infinite(c) && orientation(c, -1, nullptr) != kernel::POSITIVE) return false;
     }
@@ -190,7 +190,7 @@ class Incremental_delaunay {
   /// Orientation of cell c (finite) with vertex `replaced` (−1: none) replaced by q.
   kernel::Sign orientation(std::size_t c, int replaced, const Point* q) const {
     kernel::Point_refs<D, D + 1> refs;
-    for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c][k]];
+    for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c].v[k]];
     if (const auto s = static_filter_.orientation(refs)) return *s;
     return kernel::orientation_d<D>(refs);
   }
@@ -198,7 +198,7 @@ class Incremental_delaunay {
   /// Whether q lies inside the perturbed sphere of finite cell c.
   bool sphere_holds(std::size_t c, const Point& q) const {
     kernel::Point_refs<D, D + 2> refs;
-    for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c][k]];
+    for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c].v[k]];
     refs[D + 1] = &q;
     if (const auto s = static_filter_.side_of_oriented_sphere(refs)) return *s == kernel::POSITIVE;
     return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
@@ -240,20 +240,18 @@ class Incremental_delaunay {
     for (int i = 0; i <= D; ++i) points_[i].x = coordinates(order[i]);
     Cell first;
     for (int i = 0; i <= D; ++i) first[i] = static_cast<Index>(i);
-    cells_.assign(1, first);
-    if (orientation(0, -1, nullptr) == kernel::NEGATIVE) std::swap(cells_[0][0], cells_[0][1]);
-    neighbors_.assign(1, {});
+    cells_.assign(1, Record{first, {}});
+    if (orientation(0, -1, nullptr) == kernel::NEGATIVE) std::swap(cells_[0].v[0], cells_[0].v[1]);
     // The infinite cell across facet i: the simplex with vertex i replaced by
     // the infinite vertex and two others swapped, so that putting a point
     // beyond the facet in the infinite vertex's place orients it positively.
     for (int i = 0; i <= D; ++i) {
-      Cell c = cells_[0];
+      Cell c = cells_[0].v;
       c[i] = infinite;
       std::swap(c[(i + 1) % (D + 1)], c[(i + 2) % (D + 1)]);
-      cells_.push_back(c);
-      neighbors_.push_back({});
-      neighbors_[0][i] = reference(cells_.size() - 1, i);
-      neighbors_.back()[i] = reference(0, i);
+      cells_.push_back(Record{c, {}});
+      cells_[0].n[i] = reference(cells_.size() - 1, i);
+      cells_.back().n[i] = reference(0, i);
     }
     // The infinite cells meet each other across their facets through the infinite vertex.
     for (int a = 0; a <= D; ++a)
@@ -261,9 +259,9 @@ class Incremental_delaunay {
         const std::size_t ca = 1 + a, cb = 1 + b;
         // Cell a lacks vertex a of the simplex, cell b lacks b: the facet of a
         // opposite (the position of) vertex b, and of b opposite vertex a.
-        const int ia = position(ca, cells_[0][b]), ib = position(cb, cells_[0][a]);
-        neighbors_[ca][ia] = reference(cb, ib);
-        neighbors_[cb][ib] = reference(ca, ia);
+        const int ia = position(ca, cells_[0].v[b]), ib = position(cb, cells_[0].v[a]);
+        cells_[ca].n[ia] = reference(cb, ib);
+        cells_[cb].n[ib] = reference(ca, ia);
       }
     free_.clear();
     finite_cells_ = 1;
@@ -274,7 +272,7 @@ class Incremental_delaunay {
 
   int position(std::size_t c, Index v) const {
     for (int i = 0; i <= D; ++i)
-      if (cells_[c][i] == v) return i;
+      if (cells_[c].v[i] == v) return i;
     DEWALL_ASSERT(false);
     return -1;
   }
@@ -334,7 +332,7 @@ class Incremental_delaunay {
     for (std::size_t k = 0; k < cavity_.size(); ++k) {
       const std::size_t c = cavity_[k];
       for (int i = 0; i <= D; ++i) {
-        const std::uint32_t ref = neighbors_[c][i];
+        const std::uint32_t ref = cells_[c].n[i];
         const std::size_t n = ref >> facet_bits;
         if (mark_[n] == in) continue;
         if (mark_[n] != out) {
@@ -345,7 +343,7 @@ class Incremental_delaunay {
           }
           mark_[n] = out;
         }
-        Boundary_facet f{cells_[c], i, ref};
+        Boundary_facet f{cells_[c].v, i, ref};
         f.vertices[i] = v;
         boundary_.push_back(f);
       }
@@ -362,7 +360,7 @@ class Incremental_delaunay {
     for (const std::size_t c : cavity_)
       if (!is_infinite(c)) --finite_cells_;
     std::size_t reused = 0;
-    ridges_.begin(boundary_.size() * D / 2);  // each ridge parked once
+    new_cells_.clear();
     for (const Boundary_facet& f : boundary_) {
       std::size_t s;
       if (reused < cavity_.size()) s = cavity_[reused++];
@@ -371,32 +369,119 @@ class Incremental_delaunay {
         s = cells_.size();
         if (s >= max_slots) throw Invalid_input("too many cells for the incremental engine's 32-bit cell references");
         cells_.emplace_back();
-        neighbors_.emplace_back();
         mark_.push_back(0);
       }
-      cells_[s] = f.vertices;
+      new_cells_.push_back(static_cast<Index>(s));
+      cells_[s].v = f.vertices;
       mark_[s] = 0;
-      neighbors_[s][f.facet] = f.outside;
-      neighbors_[f.outside >> facet_bits][f.outside & facet_mask] = reference(s, f.facet);
+      cells_[s].n[f.facet] = f.outside;
+      cells_[f.outside >> facet_bits].n[f.outside & facet_mask] = reference(s, f.facet);
       bool finite = true;
-      for (int i = 0; i <= D; ++i) {
+      for (int i = 0; i <= D; ++i)
         if (f.vertices[i] == infinite) finite = false;
-        if (i == f.facet) continue;
-        // The facet opposite vertex i holds v and the D − 1 others: its key.
-        if (const std::uint32_t partner = ridges_.match_or_park(ridge_key(f.vertices, f.facet, i), reference(s, i));
-            partner != Ridge_table::none) {
-          neighbors_[s][i] = partner;
-          neighbors_[partner >> facet_bits][partner & facet_mask] = reference(s, i);
-        }
-      }
       if (finite) {
         ++finite_cells_;
         last_ = s;
       }
     }
+    if (!glue_star_directed()) glue_star_by_ridges();
     for (; reused < cavity_.size(); ++reused) {
-      cells_[cavity_[reused]][0] = free_slot;
+      cells_[cavity_[reused]].v[0] = free_slot;
       free_.push_back(static_cast<Index>(cavity_[reused]));
+    }
+  }
+
+  /// Step 3c's gluing: each new cell's facets through the new point matched
+  /// with the other new cell on them, by their other D − 1 vertices.
+  void glue_star_by_ridges() {
+    ridges_.begin(boundary_.size() * D / 2);  // each ridge parked once
+    for (std::size_t b = 0; b < boundary_.size(); ++b) {
+      const Boundary_facet& f = boundary_[b];
+      const std::size_t s = new_cells_[b];
+      for (int i = 0; i <= D; ++i) {
+        if (i == f.facet) continue;
+        if (const std::uint32_t partner = ridges_.match_or_park(ridge_key(f.vertices, f.facet, i), reference(s, i));
+            partner != Ridge_table::none) {
+          cells_[s].n[i] = partner;
+          cells_[partner >> facet_bits].n[partner & facet_mask] = reference(s, i);
+        }
+      }
+    }
+  }
+
+  /// The same in 2D and 3D with a direct table (hxt's idea). The facet
+  /// opposite vertex k of a new cell, oriented as the cell induces it, holds
+  /// the new point p: in 3D it reads (p, a, b) for an edge (a, b) of the
+  /// cavity's boundary, in 2D (p, a) or (a, p) for a boundary vertex a. The
+  /// other new cell on that facet, positively oriented too, induces the
+  /// opposite orientation: (p, b, a), resp. the other direction. So with the
+  /// boundary's vertices numbered 0 … m − 1, a table indexed by the directed
+  /// key matches each facet with the entry of the reversed key: one write and
+  /// one read per facet, no search, no collision, nothing to clear (every
+  /// entry read was written in this insertion). False, having glued nothing,
+  /// above 3D and for cavities of `star_table_side` boundary vertices or more.
+  bool glue_star_directed() {
+    if constexpr (D > 3) {
+      return false;
+    } else {
+      // Facet k as the cell induces it: positions T[k], each (k, T[k]) an even
+      // permutation of (0 … D) (in 2D the counterclockwise edges).
+      static constexpr int T3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+      static constexpr int T2[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+      // The boundary's vertices numbered through a small open-addressing
+      // table (in cache, unlike an array over all vertices), stamped per insertion.
+      const std::uint32_t stamp = ++local_stamp_;
+      if (stamp == 0) {  // wrapped around: forget every old stamp
+        std::fill(local_.begin(), local_.end(), Local{});
+        local_stamp_ = 1;
+        return glue_star_directed();
+      }
+      std::uint32_t m = 1;  // 0: the infinite vertex
+      auto local = [&](Index w) -> std::uint32_t {
+        if (w == infinite) return 0;
+        for (std::uint32_t i = (w * 0x9e3779b9u) >> (32 - local_bits);; i = (i + 1) & (local_table_size - 1)) {
+          Local& l = local_[i];
+          if (l.stamp != stamp) {
+            l = {w, stamp, m};
+            return m++;
+          }
+          if (l.vertex == w) return l.number;
+        }
+      };
+      // keys_[b·D + e]: the directed key of new cell b's e-th facet through p, and of its reverse.
+      keys_.resize(boundary_.size() * D);
+      for (std::size_t b = 0; b < boundary_.size(); ++b) {
+        const Boundary_facet& f = boundary_[b];
+        for (int k = 0, e = 0; k <= D; ++k) {
+          if (k == f.facet) continue;
+          std::uint32_t key, reverse;
+          if constexpr (D == 3) {
+            const int* t = T3[k];
+            const int r = t[0] == f.facet ? 0 : t[1] == f.facet ? 1 : 2;  // rotated to (p, a, b)
+            const std::uint32_t x = local(f.vertices[t[(r + 1) % 3]]), y = local(f.vertices[t[(r + 2) % 3]]);
+            key = x * star_table_side + y;
+            reverse = y * star_table_side + x;
+          } else {
+            const bool p_first = T2[k][0] == f.facet;
+            const std::uint32_t x = local(f.vertices[T2[k][p_first ? 1 : 0]]);
+            key = 2 * x + (p_first ? 0 : 1);
+            reverse = 2 * x + (p_first ? 1 : 0);
+          }
+          if (m >= star_table_side) return false;
+          keys_[b * D + e++] = {key, reverse};
+        }
+      }
+      for (std::size_t b = 0; b < boundary_.size(); ++b)
+        for (int k = 0, e = 0; k <= D; ++k) {
+          if (k == boundary_[b].facet) continue;
+          star_table_[keys_[b * D + e++][0]] = reference(new_cells_[b], k);
+        }
+      for (std::size_t b = 0; b < boundary_.size(); ++b)
+        for (int k = 0, e = 0; k <= D; ++k) {
+          if (k == boundary_[b].facet) continue;
+          cells_[new_cells_[b]].n[k] = star_table_[keys_[b * D + e++][1]];
+        }
+      return true;
     }
   }
 
@@ -475,8 +560,14 @@ class Incremental_delaunay {
 
   std::vector<Point> points_;    // by vertex id (insertion order)
   std::vector<Index> input_;     // the caller's id of each vertex
-  std::vector<Cell> cells_;      // by slot
-  std::vector<std::array<std::uint32_t, D + 1>> neighbors_;  // by slot
+  /// A cell slot: its vertices and its neighbour references side by side, so
+  /// that the cell the cavity search reads (vertices) is the one the star
+  /// writes (a neighbour) in the same cache line.
+  struct alignas(D == 3 ? 32 : 8) Record {
+    Cell v;
+    std::array<std::uint32_t, D + 1> n;
+  };
+  std::vector<Record> cells_;    // by slot
   std::vector<std::uint32_t> mark_;  // cavity epochs, by slot
   std::vector<Index> free_;      // free slots
   std::size_t finite_cells_ = 0;
@@ -485,6 +576,21 @@ class Incremental_delaunay {
   std::vector<std::size_t> cavity_;
   std::vector<Boundary_facet> boundary_;
   Ridge_table ridges_;
+  std::vector<Index> new_cells_;  // the slot of each boundary facet's new cell
+  // glue_star_directed: the boundary vertices' numbers, the facets' directed
+  // keys (and their reverses), the table by directed key.
+  static constexpr std::uint32_t star_table_side = 128;  // < local_table_size / 2: the table never fills
+  static constexpr int local_bits = 8;
+  static constexpr std::uint32_t local_table_size = 1u << local_bits;
+  struct Local {
+    Index vertex = 0;
+    std::uint32_t stamp = 0, number = 0;
+  };
+  std::vector<Local> local_ = std::vector<Local>(D <= 3 ? local_table_size : 0);
+  std::uint32_t local_stamp_ = 0;
+  std::vector<std::array<std::uint32_t, 2>> keys_;
+  std::vector<std::uint32_t> star_table_ =
+      std::vector<std::uint32_t>(D == 3 ? star_table_side * star_table_side : D == 2 ? 2 * star_table_side : 0);
   Incremental_statistics stats_;
   kernel::Static_filter_d<D> static_filter_;  // from the points' box: in front of the kernel's cascade
 };

@@ -8,17 +8,22 @@
 // keep the cavities small in expectation (a pure curve order can build long
 // thin cells first, on a lattice for example).
 //
-// 1. A seeded random permutation (our own generator: the order, hence the
-//    output's cell order, is the same on every platform and standard library).
-// 2. Rounds: the last three quarters of the permutation are the last round, the
-//    rest is split again the same way, down to rounds of `smallest_round` points
-//    (CGAL's multiscale sort uses the same ratio).
-// 3. Each round sorted by the Hilbert index of its points (J. Skilling,
+// 1. Rounds: each point draws its round from a seeded hash of its index (our
+//    own generator: the order, hence the output's cell order, is the same on
+//    every platform): the last round with probability 3/4, the one before
+//    with 3/16, and so on, the first round taking all points that would come
+//    before a round of `smallest_round` points (CGAL's multiscale sort uses the
+//    same ratio; the draws replace its shuffle, which reads the points in
+//    random order).
+// 2. Each round sorted by the Hilbert index of its points (J. Skilling,
 //    "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004: the transposed
-//    index from the axes, then the bits interleaved), computed on a grid of
-//    2^(63/D) cells per axis over the points' bounding box; every other round
-//    runs the curve backwards, so that each round starts near where the last
-//    one ended.
+//    index from the axes, then the bits interleaved), on a grid of
+//    2^min(16, 60/D) cells per axis over the points' bounding box; every
+//    other round runs the curve backwards, so that each round starts near
+//    where the last one ended.
+// 3. One sort of (round, index) keys: the keys are computed in input order
+//    (the coordinates read once, in sequence) and radix sorted (stable: equal
+//    keys keep input order).
 // Floating point only ranks here: the order changes the time, never the
 // triangulation (which is a function of the point set).
 #pragma once
@@ -28,7 +33,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
-#include <span>
 #include <utility>
 #include <vector>
 
@@ -65,20 +69,30 @@ std::uint64_t hilbert_index(std::array<std::uint32_t, D> x, int bits) {
   return index;
 }
 
-/// A small, fast, seeded generator (splitmix64): the same sequence everywhere.
-struct Splitmix64 {
-  std::uint64_t state;
-  std::uint64_t operator()() {
-    std::uint64_t z = (state += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
+/// splitmix64's finalizer: a well-mixed 64-bit hash (the seeded draws of the rounds).
+constexpr std::uint64_t mix64(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+/// Sorts `items` by their first member, stably (least significant digit
+/// first, 11 bits a pass, only over the bits `key_bits` that keys use).
+inline void radix_sort(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items, int key_bits) {
+  constexpr int digit = 11;
+  constexpr std::size_t buckets = std::size_t{1} << digit;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> other(items.size());
+  std::vector<std::size_t> start(buckets);
+  for (int shift = 0; shift < key_bits; shift += digit) {
+    std::fill(start.begin(), start.end(), 0);
+    for (const auto& item : items) ++start[(item.first >> shift) & (buckets - 1)];
+    std::size_t sum = 0;
+    for (auto& s : start) sum += std::exchange(s, sum);
+    for (const auto& item : items) other[start[(item.first >> shift) & (buckets - 1)]++] = item;
+    items.swap(other);
   }
-  /// Uniform in [0, n), n > 0 (Lemire's multiply-shift; its bias below 2^-32 only shapes the order).
-  std::uint32_t below(std::uint32_t n) {
-    return static_cast<std::uint32_t>(((*this)() >> 32) * n >> 32);
-  }
-};
+}
 
 /// The BRIO order of `count` points: a permutation of 0 … count − 1.
 /// `coords(i)` gives point i's coordinates (an array of D doubles, finite).
@@ -86,13 +100,6 @@ struct Splitmix64 {
 template <int D, class Coords>
 std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, std::size_t smallest_round = 1000,
                                       std::uint64_t seed = 0x5eed) {
-  std::vector<std::uint32_t> order(count);
-  for (std::size_t i = 0; i < count; ++i) order[i] = static_cast<std::uint32_t>(i);
-  if (count < 2) return order;
-  Splitmix64 random{seed};
-  for (std::size_t i = count - 1; i > 0; --i)
-    std::swap(order[i], order[random.below(static_cast<std::uint32_t>(i + 1))]);
-
   std::array<double, D> lo, hi;
   lo.fill(std::numeric_limits<double>::infinity());
   hi.fill(-std::numeric_limits<double>::infinity());
@@ -103,16 +110,20 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, std::s
       hi[j] = std::max(hi[j], x[j]);
     }
   }
-  constexpr int bits = 63 / D > 31 ? 31 : 63 / D;
+  constexpr int bits = 60 / D < 16 ? 60 / D : 16;
+  constexpr int round_shift = D * bits;  // the round above the Hilbert index
   const double cells = static_cast<double>((std::uint32_t{1} << bits) - 1);
   std::array<double, D> scale;
   for (int j = 0; j < D; ++j) {
-    // (x − lo)·scale ≤ cells even after rounding: hi − lo rounds up at most
-    // relatively 2^-53 and the product is then clamped.
     const double extent = hi[j] - lo[j];
     scale[j] = extent > 0 && extent < std::numeric_limits<double>::infinity() ? cells / extent : 0;
   }
-  auto key = [&](std::uint32_t i) {
+  // Rounds: level L (drawn with probability 3/4^(L+1)) is round last − L; the
+  // levels beyond `last` (rounds smaller than smallest_round) join round 0.
+  int last = 0;
+  for (std::size_t n = count; n > smallest_round && last < 15; n /= 4) ++last;
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
+  for (std::size_t i = 0; i < count; ++i) {
     const auto& x = coords(i);
     std::array<std::uint32_t, D> cell;
     for (int j = 0; j < D; ++j) {
@@ -120,29 +131,17 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, std::s
       t = t < 0 || !(t == t) ? 0 : t > cells ? cells : t;  // overflowing differences (|x| near 2^1023)
       cell[j] = static_cast<std::uint32_t>(t);
     }
-    return hilbert_index<D>(cell, bits);
-  };
-
-  // Round boundaries, from the end: [first, end) is the last round not yet sorted.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed;
-  std::size_t end = count;
-  bool backwards = false;
-  std::vector<std::pair<std::size_t, std::size_t>> rounds;
-  while (end > 0) {
-    const std::size_t first = end <= smallest_round ? 0 : end / 4;
-    rounds.emplace_back(first, end);
-    end = first;
+    std::uint64_t draw = mix64(seed ^ i);
+    int level = 0;
+    while (level < last && (draw & 3) == 0) ++level, draw >>= 2;
+    const int round = last - level;
+    std::uint64_t h = hilbert_index<D>(cell, bits);
+    if (round % 2) h = ~h & ((std::uint64_t{1} << round_shift) - 1);  // every other round backwards
+    keyed[i] = {std::uint64_t(round) << round_shift | h, static_cast<std::uint32_t>(i)};
   }
-  // Sorted from the first round on, so that the direction alternates in insertion order.
-  for (auto r = rounds.rbegin(); r != rounds.rend(); ++r) {
-    const auto [first, last] = *r;
-    keyed.resize(last - first);
-    for (std::size_t k = first; k < last; ++k) keyed[k - first] = {key(order[k]), order[k]};
-    std::sort(keyed.begin(), keyed.end());
-    if (backwards) std::reverse(keyed.begin(), keyed.end());
-    for (std::size_t k = first; k < last; ++k) order[k] = keyed[k - first].second;
-    backwards = !backwards;
-  }
+  radix_sort(keyed, round_shift + 4);
+  std::vector<std::uint32_t> order(count);
+  for (std::size_t k = 0; k < count; ++k) order[k] = keyed[k].second;
   return order;
 }
 
