@@ -109,13 +109,20 @@ DT make_delaunay_triangulation_3(InputIterator first, InputIterator last, const 
                 "make_delaunay_triangulation_3 builds a CGAL::Delaunay_triangulation_3<Gt, Tds, Location_policy, "
                 "Lock_data_structure> (any traits and data structure); CGAL::Triangulation_3 and "
                 "Regular_triangulation_3 are not Delaunay triangulations of points");
+  // The Delaunay hierarchy (Fast_location) takes no lock data structure.
+  auto make_empty = [&] {
+    if constexpr (std::is_constructible_v<DT, const typename DT::Geom_traits&, typename DT::Lock_data_structure*>)
+      return DT(traits, lock_ds);
+    else
+      return DT(traits);
+  };
   if constexpr (is_delaunay_3)
-    return detail::make_triangulation<DT>([&] { return DT(traits, lock_ds); }, first, last, options,
+    return detail::make_triangulation<DT>(make_empty, first, last, options,
                                       [](DT& dt, const auto& items, const Options& o) {
                                         return detail::build_with_dewall_3(dt, items, o);
                                       });
   else
-    return DT(traits, lock_ds);
+    return make_empty();
 }
 
 /// Convenience overload for a whole range (e.g. a std::vector of points).
