@@ -68,8 +68,7 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
   if constexpr (is_hierarchy_2<DT>) {
     return false;
   } else {
-    return build_with_dewall<2, Tds2_access>(dt, items, options,
-                                          [](const typename DT::Point& p, int j) { return j == 0 ? p.x() : p.y(); });
+    return build_with_dewall<2, Tds2_access>(dt, items, options);
   }
 }
 
@@ -77,11 +76,14 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 
 /// The Delaunay triangulation of the points in [first, last), as a DT.
 ///
-/// DT: a CGAL::Delaunay_triangulation_2<K, Tds> for any kernel K and data
-/// structure Tds (vertex and face bases of the caller's choice).
-/// The range holds DT::Point, or std::pair<DT::Point, Info> when the vertex
-/// base carries an Info (as for CGAL's range insert); each vertex gets the info
-/// of its first occurrence in the range.
+/// DT: a CGAL::Delaunay_triangulation_2<Gt, Tds> (or a class derived from
+/// one, e.g. CGAL::Triangulation_hierarchy_2) for any traits Gt and data
+/// structure Tds (vertex and face bases of the caller's choice); anything else
+/// is refused at compile time.
+/// The range holds what CGAL's range insert takes: DT::Point, or, when the
+/// vertex base carries an Info, std::pair<DT::Point, Info> or a
+/// boost::zip_iterator of (point, info); any input iterator. Each vertex gets
+/// the info of its point's first occurrence in the range.
 ///
 /// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
 /// per distinct point (the first occurrence, in input order), DeWall's
@@ -90,7 +92,16 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 /// triangulation CGAL's own insertion would give (the same cells as vertex
 /// sets, also for cospherical points, by the shared symbolic perturbation).
 ///
-/// Falls back to CGAL's own insertion (same result, CGAL's speed) when
+/// DeWall runs only for traits whose predicates are provably DeWall's on the
+/// coordinates it is given (detail/geom_traits.hpp): CGAL::Epick and
+/// CGAL::Epeck on (x, y), and CGAL::Projection_traits_xy_3/_xz_3/_yz_3 over
+/// them on (x, y), (x, z), (y, z). Everything else is CGAL's own range
+/// insertion (same result, CGAL's speed):
+///  * other traits (Projection_traits_3 with a normal vector, inexact or
+///    user kernels): DeWall would decide with other predicates;
+///  * under a projection, two input points equal in the projected
+///    coordinates but not as points: CGAL keeps the one its spatial sort
+///    inserts first, which DeWall cannot tell;
 ///  * the distinct points are fewer than 3 or collinear: CGAL then builds its
 ///    lower-dimensional triangulation (dimension -1 … 1), which DeWall does not;
 ///  * some coordinate is not exactly a double (e.g. an exact kernel holding
@@ -98,8 +109,6 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 ///    coordinates could be inverted or non-Delaunay for the true points;
 ///  * DT is a CGAL::Triangulation_hierarchy_2 (whose upper levels are built
 ///    by insertion).
-/// With CGAL::Epick every finite point is exactly doubles: DeWall always runs
-/// on full-dimensional input.
 ///
 /// \pre every coordinate is finite.
 /// \throws dewall::Invalid_input for a NaN or infinite coordinate.
@@ -108,9 +117,17 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 template <class DT, class InputIterator>
 DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const Options& options = {},
                                  const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
-  return detail::make_triangulation<DT>(first, last, options, traits, [](DT& dt, const auto& items, const Options& o) {
-    return detail::build_with_dewall_2(dt, items, o);
-  });
+  constexpr bool is_delaunay_2 = detail::derives_from_template<DT, CGAL::Delaunay_triangulation_2>;
+  static_assert(is_delaunay_2,
+                "make_delaunay_triangulation_2 builds a CGAL::Delaunay_triangulation_2<Gt, Tds> (any traits and data "
+                "structure, or a Triangulation_hierarchy_2 of one); for 3D use make_delaunay_triangulation_3, for "
+                "dD make_delaunay_triangulation_d");
+  if constexpr (is_delaunay_2)
+    return detail::make_triangulation<DT>([&] { return DT(traits); }, first, last, options, [](DT& dt, const auto& items, const Options& o) {
+      return detail::build_with_dewall_2(dt, items, o);
+    });
+  else
+    return DT(traits);
 }
 
 /// Convenience overload for a whole range (e.g. a std::vector of points).

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <CGAL/Delaunay_triangulation.h>
+#include <CGAL/Epick_d.h>
 
 #include <array>
 #include <cstddef>
@@ -65,7 +66,11 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
   constexpr int D = static_dimension<DT>();
   static_assert(D >= kernel::min_dimension && D <= kernel::max_dimension, "DeWall runs in dimensions 2 … 6");
   using Point = typename DT::Point;
-  using Traits = Item_traits<Point, Point>;
+  using Traits = Item_traits<Point>;
+  // Epick_d's predicates are exact on the points' doubles, and its
+  // perturbation order (Triangulation/internal/utilities.h) is ours; other dD
+  // traits (Epeck_d, Cartesian_d, a user's) are left to CGAL.
+  if constexpr (!std::is_same_v<typename DT::Geom_traits, CGAL::Epick_d<CGAL::Dimension_tag<D>>>) return false;
   const auto coords = to_dewall_points<D, std::vector<Point>, Traits>(points, [](const Point& p, int j) { return p[j]; });
   if (!coords) return false;
   const auto simplices = dewall_simplices<D>(*coords, options);
@@ -87,9 +92,11 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
 
 /// The Delaunay triangulation of the points in [first, last), as a DT.
 ///
-/// DT: a CGAL::Delaunay_triangulation<K, Tds> of static dimension D,
-/// 2 ≤ D ≤ 6 (K e.g. CGAL::Epick_d<CGAL::Dimension_tag<D>>). The range holds
-/// DT::Point (CGAL's dD range insert takes no vertex data either).
+/// DT: a CGAL::Delaunay_triangulation<K, Tds> (or a class derived from one) of
+/// static dimension D, 2 ≤ D ≤ 6; anything else is refused at compile time.
+/// DeWall runs for K = CGAL::Epick_d<CGAL::Dimension_tag<D>>, other kernels go
+/// to CGAL's insertion. The range holds values convertible to DT::Point (CGAL's
+/// dD range insert takes no vertex data either); any input iterator.
 ///
 /// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
 /// per distinct point (the first occurrence, in input order), DeWall's full
@@ -109,7 +116,11 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
 template <class DT, class InputIterator>
 DT make_delaunay_triangulation_d(InputIterator first, InputIterator last, const Options& options = {},
                                  const typename DT::Geom_traits& traits = typename DT::Geom_traits()) {
-  const std::vector<typename DT::Point> points(first, last);
+  static_assert(detail::derives_from_template<DT, CGAL::Delaunay_triangulation>,
+                "make_delaunay_triangulation_d builds a dD CGAL::Delaunay_triangulation<K, Tds> of static dimension "
+                "(K e.g. CGAL::Epick_d<CGAL::Dimension_tag<D>>); for 2D and 3D triangulations use "
+                "make_delaunay_triangulation_2 / _3");
+  const auto points = detail::read_items<typename DT::Point, void>(first, last);
   DT dt(detail::static_dimension<DT>(), traits);
   // CGAL 5.5's dD range insert dereferences begin() of an empty range inside
   // spatial_sort (UBSan: reference binding to null): an empty input is an

@@ -6,17 +6,23 @@
 
 #include <CGAL/number_utils.h>
 
+#include <boost/tuple/tuple.hpp>
+
+#include <algorithm>
 #include <array>
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "dewall/cgal/detail/facet_matcher.hpp"
+#include "dewall/cgal/detail/geom_traits.hpp"
 #include "dewall/detail/assert.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/error.hpp"
@@ -24,17 +30,65 @@
 
 namespace dewall::cgal::detail {
 
-/// True when Item is std::pair<Point, Info> for some Info (CGAL's range insert
-/// with info takes exactly that), false when it is Point itself.
-template <class Item, class Point>
+/// The Info of a CGAL vertex type, or void when its base carries none.
+template <class Vertex>
+struct Vertex_info {
+  using type = void;
+};
+template <class Vertex>
+  requires requires { typename Vertex::Info; }
+struct Vertex_info<Vertex> {
+  using type = typename Vertex::Info;
+};
+
+template <class>
+inline constexpr bool dependent_false = false;
+
+/// One value of the caller's range as the builders keep it: a Point, or
+/// std::pair<Point, Info>. Accepted are the values CGAL's range insert takes
+/// (Delaunay_triangulation_2/_3::insert(first, last)): anything convertible to
+/// Point; with an Info, anything convertible to std::pair<Point, Info>, and a
+/// boost::tuple of (point, info) as boost::zip_iterator yields (CGAL's
+/// info_insert_with_zip_iterator examples). Iterators may be input iterators:
+/// the range is read once.
+template <class Point, class Info, class Value>
+auto to_item(const Value& value) {
+  if constexpr (std::is_convertible_v<const Value&, Point>) {
+    return Point(value);
+  } else if constexpr (!std::is_void_v<Info> && std::is_convertible_v<const Value&, std::pair<Point, Info>>) {
+    return std::pair<Point, Info>(value);
+  } else if constexpr (!std::is_void_v<Info> && requires {
+                         requires boost::tuples::length<Value>::value == 2;
+                         { boost::get<0>(value) } -> std::convertible_to<Point>;
+                         { boost::get<1>(value) } -> std::convertible_to<Info>;
+                       }) {
+    return std::pair<Point, Info>(boost::get<0>(value), boost::get<1>(value));
+  } else {
+    static_assert(dependent_false<Value>,
+                  "the range must hold the triangulation's Point or, when its vertices carry an Info, "
+                  "std::pair<Point, Info> or boost::tuple<Point, Info> (a boost::zip_iterator), as CGAL's range "
+                  "insert does");
+  }
+}
+
+/// The range [first, last) as the items to_item makes of its values.
+template <class Point, class Info, class InputIterator>
+auto read_items(InputIterator first, InputIterator last) {
+  using Item = decltype(to_item<Point, Info>(*first));
+  std::vector<Item> items;
+  if constexpr (std::forward_iterator<InputIterator>) items.reserve(static_cast<std::size_t>(std::distance(first, last)));
+  for (; first != last; ++first) items.push_back(to_item<Point, Info>(*first));
+  return items;
+}
+
+/// Access to an item's point and (when present) info.
+template <class Item>
 struct Item_traits {
-  static_assert(std::is_convertible_v<Item, Point>,
-                "the range must hold the triangulation's Point or std::pair<Point, Info>");
   static constexpr bool has_info = false;
-  static const Point& point(const Item& item) { return item; }
+  static const Item& point(const Item& item) { return item; }
 };
 template <class Point, class Info>
-struct Item_traits<std::pair<Point, Info>, Point> {
+struct Item_traits<std::pair<Point, Info>> {
   static constexpr bool has_info = true;
   static const Point& point(const std::pair<Point, Info>& item) { return item.first; }
 };
@@ -175,39 +229,80 @@ void assemble(const std::vector<Simplex<D>>& simplices, std::size_t input_size, 
   DEWALL_ASSERT(hull_ridges.size() == 0);
 }
 
-/// Builds dt (freshly constructed) from items with DeWall, assembled in its
-/// data structure through Access<DT, Item, Traits> (Tds2_access, Tds3_access);
-/// false when DeWall does not apply (a coordinate not exactly a double, or
-/// points not spanning E^D) and dt is untouched. `coordinate(p, j)`: the j-th
-/// coordinate of a DT::Point. The 2D and 3D builders differ only in these.
-template <int D, template <class, class, class> class Access, class DT, class Item, class Coordinate>
-bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options, Coordinate&& coordinate) {
-  using Traits = Item_traits<Item, typename DT::Point>;
-  const auto coords = to_dewall_points<D, std::vector<Item>, Traits>(items, coordinate);
-  if (!coords) return false;
-  const auto simplices = dewall_simplices<D>(*coords, options);
-  if (!simplices) return false;
-
-  auto& tds = dt.tds();
-  tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
-  Access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
-  dt.set_infinite_vertex(access.infinite);
-  tds.set_dimension(D);
-  assemble<D>(*simplices, items.size(), access);
-  return true;
+/// Whether two items are one point for DeWall (equal `coords`) but differ as
+/// points, as (6, 1, 1) and (6, 1, 7) under Projection_traits_xy_3. CGAL then
+/// keeps one of them as the vertex, the first its spatial sort reaches (a
+/// located VERTEX returns the existing vertex), which DeWall's "first
+/// occurrence" does not reproduce. Complexity: O(n log n).
+template <int D, class Items>
+bool has_projected_twins(const std::vector<kernel::Point_d<D>>& coords, const Items& items) {
+  using Traits = Item_traits<typename Items::value_type>;
+  std::vector<std::uint32_t> order(coords.size());
+  std::iota(order.begin(), order.end(), std::uint32_t{0});
+  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return coords[a].x < coords[b].x; });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const std::uint32_t a = order[k - 1], b = order[k];
+    // Equal neighbours in the order: a run of twins compares each to the next.
+    if (coords[a].x == coords[b].x && !(Traits::point(items[a]) == Traits::point(items[b]))) return true;
+  }
+  return false;
 }
 
-/// The body of make_delaunay_triangulation_2/_3: dt built by `build_with_dewall`
-/// (build_with_dewall_2/_3) from the items of [first, last), or by CGAL's own
-/// insertion where DeWall does not apply.
-template <class DT, class InputIterator, class Build>
-DT make_triangulation(InputIterator first, InputIterator last, const Options& options,
-                      const typename DT::Geom_traits& traits, Build&& build_with_dewall) {
-  using Item = typename std::iterator_traits<InputIterator>::value_type;
-  const std::vector<Item> items(first, last);
-  DT dt(traits);
+/// Builds dt (freshly constructed) from items with DeWall, assembled in its
+/// data structure through Access<DT, Item, Traits> (Tds2_access, Tds3_access);
+/// false when DeWall does not apply and dt is untouched: DT's geometric traits
+/// are not known to decide as DeWall does (Dewall_axes), a coordinate is not
+/// exactly a double, points equal under the projection differ as points
+/// (has_projected_twins), or the points do not span E^D. The 2D and 3D
+/// builders differ only in Access.
+template <int D, template <class, class, class> class Access, class DT, class Item>
+bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options) {
+  using Axes = Dewall_axes<typename DT::Geom_traits, D>;
+  if constexpr (!Axes::known) {
+    return false;
+  } else {
+    using Traits = Item_traits<Item>;
+    const auto coords = to_dewall_points<D, std::vector<Item>, Traits>(
+        items, [](const typename DT::Point& p, int j) { return p.cartesian(Axes::axes[static_cast<std::size_t>(j)]); });
+    if (!coords) return false;
+    if constexpr (Axes::projects)
+      if (has_projected_twins<D>(*coords, items)) return false;
+    const auto simplices = dewall_simplices<D>(*coords, options);
+    if (!simplices) return false;
+
+    auto& tds = dt.tds();
+    tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
+    Access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
+    dt.set_infinite_vertex(access.infinite);
+    tds.set_dimension(D);
+    assemble<D>(*simplices, items.size(), access);
+    return true;
+  }
+}
+
+/// The body of make_delaunay_triangulation_2/_3: the empty DT `make_empty()`
+/// returns (with the caller's traits, and lock data structure in 3D) built by
+/// `build_with_dewall` (build_with_dewall_2/_3) from the items of
+/// [first, last), or by CGAL's own range insertion where DeWall does not apply.
+template <class DT, class Make_empty, class InputIterator, class Build>
+DT make_triangulation(Make_empty&& make_empty, InputIterator first, InputIterator last, const Options& options,
+                      Build&& build_with_dewall) {
+  DT dt = make_empty();
+  using Info = typename Vertex_info<typename DT::Vertex>::type;
+  const auto items = read_items<typename DT::Point, Info>(first, last);
   if (!build_with_dewall(dt, items, options)) dt.insert(items.begin(), items.end());
   return dt;
 }
+
+/// True when T is, or derives from, Tpl<A...> for some arguments: what the
+/// builders' static_asserts check DT against (CGAL::Delaunay_triangulation_2 …).
+template <template <class...> class Tpl>
+struct Template_match {
+  template <class... A>
+  static std::true_type test(const Tpl<A...>*);
+  static std::false_type test(...);
+};
+template <class T, template <class...> class Tpl>
+inline constexpr bool derives_from_template = decltype(Template_match<Tpl>::test(static_cast<const T*>(nullptr)))::value;
 
 }  // namespace dewall::cgal::detail
