@@ -1,9 +1,10 @@
 // One row of the benchmark suite (bench/suite, issue 10 item 4): one point set,
-// CGAL and dewall (default engine and forced DeWall) on the same points, one
+// CGAL and dewall (its own incremental engine, the default engine and forced
+// DeWall) on the same points, one
 // thread each, and ONE line of JSON with everything on standard output.
 //
 //   bench_suite_row --kind K --points N --dim D [--seed S] [--noise X] [--planes P]
-//                   [--tools cgal,auto,dewall] [--repeat R] [--tool-limit SEC]
+//                   [--tools cgal,incremental,auto,dewall] [--repeat R] [--tool-limit SEC]
 //                   [--floor-sample M]
 //
 // Steps:
@@ -13,7 +14,7 @@
 //     spacing h of the circumsphere of a sample of its cells (below);
 //  3. timed, best of R: CGAL (Delaunay_triangulation_2/_3 with Epick, dD
 //     Delaunay_triangulation with Epick_d in 4D), then dewall with
-//     Engine::automatic, then with Engine::dewall, all with parallel_depth 0;
+//     Engine::incremental, Engine::automatic, then Engine::dewall, all with parallel_depth 0;
 //     each dewall result is compared with the reference as a set of sorted
 //     index tuples right after its run (untimed).
 // A watchdog stops a tool that runs longer than --tool-limit: the line is then
@@ -71,14 +72,14 @@ struct Row_options {
   std::uint64_t n = 10000, dim = 3, seed = 1, repeat = 1, floor_sample = 2000;
   double noise = 0, tool_limit = 0;
   int planes = 0;
-  bool cgal = true, automatic = true, forced = true;
+  bool cgal = true, incremental = true, automatic = true, forced = true;
 };
 
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(stderr,
                "bench_suite_row: %s\n"
                "usage: bench_suite_row --kind K --points N --dim 2|3|4 [--seed S] [--noise X] [--planes P]\n"
-               "                       [--tools cgal,auto,dewall] [--repeat R] [--tool-limit SEC]\n"
+               "                       [--tools cgal,incremental,auto,dewall] [--repeat R] [--tool-limit SEC]\n"
                "                       [--floor-sample M]\nK: %s\n",
                why.c_str(), dewall::io::point_kind_names().c_str());
   std::exit(2);
@@ -131,13 +132,14 @@ Row_options parse_options(int argc, char** argv) {
     } else if (option == "--tool-limit") {
       o.tool_limit = parse_number(option, value);
     } else if (option == "--tools") {
-      o.cgal = o.automatic = o.forced = false;
+      o.cgal = o.incremental = o.automatic = o.forced = false;
       std::stringstream list(value);
       for (std::string tool; std::getline(list, tool, ',');) {
         if (tool == "cgal") o.cgal = true;
+        else if (tool == "incremental") o.incremental = true;
         else if (tool == "auto") o.automatic = true;
         else if (tool == "dewall") o.forced = true;
-        else usage("unknown tool '" + tool + "' (cgal, auto, dewall)");
+        else usage("unknown tool '" + tool + "' (cgal, incremental, auto, dewall)");
       }
     } else {
       usage("unknown option " + option);
@@ -539,6 +541,7 @@ int run(const Row_options& o, Report& report) {
                ",\"searches_before_handover\":" + std::to_string(st.searches_before_handover) +
                ",\"equal_to_cgal\":" + (equal ? "true" : "false") + "}");
   };
+  if (o.incremental) run_dewall("incremental", dewall::Engine::incremental);
   if (o.automatic) run_dewall("auto", dewall::Engine::automatic);
   if (o.forced) run_dewall("dewall", dewall::Engine::dewall);
   return report.finish();
