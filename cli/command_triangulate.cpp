@@ -1,5 +1,5 @@
 // dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N] [--stream]
-//                    [--region-points N] [--stats] [--quiet]
+//                    [--region-points N] [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]
 #include <cstdio>
 #include <optional>
 
@@ -14,6 +14,7 @@ namespace dewall::cli {
 int command_triangulate(int argc, char** argv) {
   std::string output = "-";
   std::string engine = "auto";
+  std::string incremental_engine = "auto";
   std::optional<std::string> threads;        // absent: all cores
   std::optional<std::string> region_points;  // absent: chosen by n
   bool stats = false, quiet = false, stream = false;
@@ -22,6 +23,7 @@ int command_triangulate(int argc, char** argv) {
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--engine") engine = next_arg(i, argc, argv);
+        else if (a == "--incremental-engine") incremental_engine = next_arg(i, argc, argv);
         else if (a == "--threads") threads = next_arg(i, argc, argv);
         else if (a == "--stats") stats = true;
         else if (a == "--stream") stream = true;
@@ -35,6 +37,11 @@ int command_triangulate(int argc, char** argv) {
   Options options;
   if (const auto e = parse_engine(engine)) options.engine = *e;
   else throw Usage_error("unknown engine " + io::quoted(engine) + " (" + engine_choices + ")");
+  if (const auto e = parse_engine(incremental_engine);
+      e && (*e == Engine::automatic || *e == Engine::incremental || *e == Engine::cgal))
+    options.incremental_engine = *e;
+  else
+    throw Usage_error("unknown incremental engine " + io::quoted(incremental_engine) + " (auto, incremental or cgal)");
   if (threads) options.threads = parse_thread_count(*threads);
   if (region_points) {
     const long n = parse_long(*region_points, "region size");
@@ -77,7 +84,8 @@ int command_triangulate(int argc, char** argv) {
 namespace {
 const bool registered = register_command({"triangulate", command_triangulate,
     "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N]\n"
-    "              [--stream] [--region-points N] [--stats] [--quiet]\n"
+    "              [--stream] [--region-points N]\n"
+    "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -110,6 +118,10 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      stream leaves its count 'unknown' (readers take what follows).\n"
     "      --region-points N: regions of at most N points instead (hybrid and\n"
     "      auto; the same simplices; the order, speed and memory change with N).\n"
+    "      --incremental-engine: the incremental construction of the regions and\n"
+    "      of what auto hands over: incremental (dewall's own), cgal, or auto\n"
+    "      (default: the faster of the two for the job, measured; the same\n"
+    "      simplices with each).\n"
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"

@@ -21,13 +21,13 @@ template <int D>
 Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
                                 Simplex_output<D>& output) {
   using K = kernel::Filtered_kernel_d<D>;
-  const Engine chosen =
-      options.incremental_engine == Engine::automatic ? default_incremental_engine(D) : options.incremental_engine;
-  if (chosen != Engine::incremental && chosen != Engine::cgal)
+  const Engine chosen = options.incremental_engine;
+  if (chosen != Engine::automatic && chosen != Engine::incremental && chosen != Engine::cgal)
     throw std::invalid_argument(std::string("dewall: Options::incremental_engine must be automatic, incremental or cgal, not ") +
                                 engine_name(chosen));
-  const bool own_engine = chosen == Engine::incremental;
-  const Region_triangulator<D> regions = own_engine ? incremental_region_cells<D> : cgal_region_cells<D>;
+  const bool own_engine = (chosen == Engine::automatic ? default_incremental_engine(D) : chosen) == Engine::incremental;
+  const bool own_regions = (chosen == Engine::automatic ? default_region_engine(D) : chosen) == Engine::incremental;
+  const Region_triangulator<D> regions = own_regions ? incremental_region_cells<D> : cgal_region_cells<D>;
   // The incremental construction where automatic leaves the input to one.
   auto incremental = [&](const std::vector<std::size_t>* distinct) {
     return own_engine ? triangulate_incremental<D>(points, output, distinct)

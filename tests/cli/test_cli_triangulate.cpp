@@ -109,11 +109,20 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
     for (const auto& q : p) text += std::to_string(q[0]) + " " + std::to_string(q[1]) + " " + std::to_string(q[2]) + "\n";
     const auto by_cgal = cli.with_stdin("triangulate - --engine cgal", text);
     const auto by_dewall = cli.with_stdin("triangulate - --engine dewall", text);
+    const auto by_own = cli.with_stdin("triangulate - --engine incremental", text);
+    const auto hybrid_own = cli.with_stdin("triangulate - --engine hybrid --region-points 8 --incremental-engine incremental", text);
+    const auto hybrid_cgal = cli.with_stdin("triangulate - --engine hybrid --region-points 8 --incremental-engine cgal", text);
     REQUIRE(by_cgal.status == 0);
     REQUIRE(by_dewall.status == 0);
+    REQUIRE(by_own.status == 0);
+    REQUIRE(hybrid_own.status == 0);
+    REQUIRE(hybrid_cgal.status == 0);
     const auto cells = simplex_set<3>(by_cgal.out);
     CHECK(!cells.empty());
     CHECK(cells == simplex_set<3>(by_dewall.out));
+    CHECK(cells == simplex_set<3>(by_own.out));
+    CHECK(cells == simplex_set<3>(hybrid_own.out));
+    CHECK(cells == simplex_set<3>(hybrid_cgal.out));
     CHECK(cells == dewall::test::as_set<3>(dewall::test::cgal_delaunay<3>(p)));
     std::istringstream rows(by_cgal.out);
     std::array<std::uint32_t, 4> t;
@@ -135,6 +144,13 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
     CHECK(r.err.find("at least 3 distinct points") != std::string::npos);
     CHECK(cli.with_stdin("triangulate - --engine qhull", "0 0\n1 0\n0 1\n").status == 2);
     CHECK(cli.with_stdin("triangulate - --engine", "0 0\n1 0\n0 1\n").status == 2);
+    // The regions' construction must be an incremental one.
+    r = cli.with_stdin("triangulate - --incremental-engine dewall", "0 0\n1 0\n0 1\n");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("auto, incremental or cgal") != std::string::npos);
+    r = cli.with_stdin("triangulate - --engine incremental", "0 0\n1 1\n2 2\n3 3\n");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("collinear") != std::string::npos);
   }
   SECTION("--threads N: the same bytes for every N; bad counts are usage errors") {
     std::string text;

@@ -76,7 +76,7 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
     CHECK(hybrid.statistics.engine == Engine::hybrid);
     // The regions built by the other incremental construction: the same
     // simplices (in that construction's order within each region).
-    const Engine other = dewall::default_incremental_engine(D) == Engine::cgal ? Engine::incremental : Engine::cgal;
+    const Engine other = dewall::default_region_engine(D) == Engine::cgal ? Engine::incremental : Engine::cgal;
     const auto hybrid_other = dewall::triangulate<D>(
         points, Options{.engine = Engine::hybrid, .incremental_engine = other, .region_points = *region_points});
     CHECK(dewall::test::as_set<D>(hybrid_other.simplices) == expected);

@@ -22,7 +22,7 @@ enum class Engine {
   /// walls only add to it there).
   /// "The incremental construction" is the project's own (Engine::incremental)
   /// where it is measured faster than CGAL's, CGAL's (Engine::cgal) elsewhere:
-  /// see default_incremental_engine.
+  /// see default_incremental_engine and default_region_engine.
   automatic,
   /// DeWall only: walls all the way down (the paper's algorithm).
   dewall,
@@ -40,13 +40,21 @@ enum class Engine {
   hybrid,
 };
 
-/// The incremental construction Engine::automatic and the hybrid's regions
-/// use in dimension D: the project's own where it is faster than CGAL's on
-/// one thread (4D and up: half CGAL dD's time on uniform points), CGAL's in 2D
-/// and 3D until ours passes it there (docs/engines.md has the measurements).
+/// The incremental construction Engine::automatic leaves an input to (one
+/// region's size, a spent search budget, 4D and up) in dimension D: the
+/// project's own where it is faster than CGAL's on one thread (4D and up:
+/// half CGAL dD's time on uniform points), CGAL's in 2D and 3D, where what is
+/// left to it is mostly near-cospherical (spheres, shells, lattices) and our
+/// exact stage (GMP) is slower than CGAL's (points on a sphere, 10^5: 4.5×).
+/// docs/engines.md has the measurements.
 constexpr Engine default_incremental_engine(int dimension) {
   return dimension >= 4 ? Engine::incremental : Engine::cgal;
 }
+
+/// The incremental construction of the hybrid's regions: the project's own in
+/// every dimension (what reaches the regions is volume-like: uniform, ball,
+/// bubbles and layers 10^5, one thread, 0.74–0.86× CGAL's time).
+constexpr Engine default_region_engine(int /*dimension*/) { return Engine::incremental; }
 
 /// "automatic", "dewall", "cgal", "incremental" or "hybrid".
 constexpr const char* engine_name(Engine e) {
@@ -89,7 +97,8 @@ struct Options {
   Engine engine = Engine::automatic;
   /// The incremental construction that builds the hybrid's regions and what
   /// Engine::automatic leaves to one: Engine::incremental (the project's own),
-  /// Engine::cgal, or Engine::automatic for default_incremental_engine(D).
+  /// Engine::cgal, or Engine::automatic for default_region_engine(D) in the
+  /// regions and default_incremental_engine(D) for the rest.
   /// Any other value is refused (std::invalid_argument). The simplices are
   /// the same with each.
   Engine incremental_engine = Engine::automatic;
