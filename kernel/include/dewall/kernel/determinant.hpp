@@ -16,6 +16,8 @@
 #include <bit>
 #include <cstddef>
 #include <type_traits>
+#include <gmp.h>
+
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -91,6 +93,44 @@ template <class T, int K>
     });
     return minor[(1u << K) - 1];
   }
+}
+
+/// acc += a·b: the recipes' one fused step, in place for exact integers
+/// (mpz_addmul: no temporary). For double and Interval the same two operations
+/// as `acc += a * b`, in that order (the error bounds count them so).
+template <class T>
+[[gnu::always_inline]] inline void add_product(T& acc, const T& a, const T& b) {
+  if constexpr (requires { mpz_addmul(acc.get_mpz_t(), a.get_mpz_t(), b.get_mpz_t()); })
+    mpz_addmul(acc.get_mpz_t(), a.get_mpz_t(), b.get_mpz_t());
+  else
+    acc += a * b;
+}
+
+/// The sign of det(a) over GMP integers, computed by the same expansion as
+/// `determinant` into `minor` (2^K integers the caller keeps, so that once
+/// their limbs have grown no call allocates: a fresh temporary per product
+/// made malloc and free half the exact stage's time).
+template <int K, class Integer>
+int determinant_sign_in_place(const Matrix<Integer, K>& a, std::array<Integer, (1 << K)>& minor) {
+  constexpr const auto& table = detail::minor_masks<K>;
+  detail::static_for<0, K>([&](auto j) { minor[std::size_t{1} << j] = a[K - 1][j]; });
+  detail::static_for<2, K + 1>([&](auto r) {
+    const auto& row = a[static_cast<std::size_t>(K - r)];
+    detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
+      constexpr unsigned mask = table.masks[t];
+      constexpr int lowest = std::countr_zero(mask);
+      auto* sum = minor[mask].get_mpz_t();
+      mpz_mul(sum, row[lowest].get_mpz_t(), minor[mask & ~(1u << lowest)].get_mpz_t());
+      detail::static_for<lowest + 1, K>([&](auto j) {
+        if constexpr ((mask & (1u << j)) != 0) {
+          constexpr bool negate = std::popcount(mask & ((1u << j) - 1)) % 2 == 1;
+          if constexpr (negate) mpz_submul(sum, row[j].get_mpz_t(), minor[mask & ~(1u << j)].get_mpz_t());
+          else mpz_addmul(sum, row[j].get_mpz_t(), minor[mask & ~(1u << j)].get_mpz_t());
+        }
+      });
+    });
+  });
+  return mpz_sgn(minor[(1u << K) - 1].get_mpz_t());
 }
 
 }  // namespace dewall::kernel

@@ -33,16 +33,20 @@ struct Split_double {
 
 inline Split_double split(double v) {
   if (v == 0) return {0, std::numeric_limits<int>::max()};
-  int e = 0;
-  const double f = std::frexp(v, &e);  // v = f·2^e, 0.5 ≤ |f| < 1
-  std::int64_t m = static_cast<std::int64_t>(std::ldexp(f, 53));
-  e -= 53;
+  // From the bits (frexp and ldexp were a tenth of a lattice's triangulation):
+  // a normal double is (2^52 + fraction)·2^(field − 1075), a subnormal
+  // fraction·2^-1074. v is finite (checked at the API boundary).
+  const auto bits = std::bit_cast<std::uint64_t>(v);
+  const int field = static_cast<int>((bits >> 52) & 0x7ff);
+  const std::uint64_t fraction = bits & ((std::uint64_t{1} << 52) - 1);
+  const std::uint64_t magnitude = field == 0 ? fraction : fraction | (std::uint64_t{1} << 52);
+  const int exponent = field == 0 ? -1074 : field - 1075;
   // An odd mantissa keeps small integers small (3.0 is 3·2^0, not 3·2^51·2^-51),
   // which lets the 128-bit path below take exactly degenerate integer inputs.
-  const int zeros = std::countr_zero(static_cast<std::uint64_t>(m < 0 ? -m : m));
-  return {m >> zeros, e + zeros};
+  const int zeros = std::countr_zero(magnitude);
+  const auto m = static_cast<std::int64_t>(magnitude >> zeros);
+  return {bits >> 63 ? -m : m, exponent + zeros};
 }
-
 }  // namespace detail
 
 /// Converts a batch of doubles to integers on one scale: value·2^-E.
@@ -71,6 +75,13 @@ class Common_scale {
     return static_cast<Int128>(s.mantissa) * (static_cast<Int128>(1) << (s.exponent - min_exponent_));
   }
 
+  /// z = values[i]·2^-E, in place (z keeps its capacity: no allocation once grown).
+  void assign_integer(int i, Exact_integer& z) const {
+    const auto& s = parts_[i];
+    mpz_set_si(z.get_mpz_t(), static_cast<long>(s.mantissa));
+    if (s.mantissa != 0)
+      mpz_mul_2exp(z.get_mpz_t(), z.get_mpz_t(), static_cast<mp_bitcnt_t>(s.exponent - min_exponent_));
+  }
   /// values[i]·2^-E as an exact integer.
   Exact_integer integer(int i) const {
     const auto& s = parts_[i];

@@ -13,6 +13,7 @@
 //   static constexpr double epsilon;       error_bounds.hpp, for this K and D
 //   static constexpr Sign sign_adjust;     sign(predicate) = sign_adjust · sign(det)
 //   template <class T, class Coord> static Matrix<T, size> matrix(const Coord& c);
+//   template <class T, class Coord> static void fill(Matrix<T, size>& m, const Coord& c);  (the same, in place)
 //       c(i, j) is coordinate j of input point i, as a T.
 //   static Predicate_stats& stats();
 #pragma once
@@ -178,11 +179,17 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
       return Recipe::sign_adjust * (det > 0 ? POSITIVE : det < 0 ? NEGATIVE : ZERO);
     }
   }
-  Exact_integer integers[N];
-  for (int k = 0; k < N; ++k) integers[k] = scale.integer(k);
-  const auto m = Recipe::template matrix<Exact_integer>(
-      [&](int i, int j) -> const Exact_integer& { return integers[i * D + j]; });
-  return Recipe::sign_adjust * static_cast<Sign>(sgn(determinant<Exact_integer, Recipe::size>(m)));
+  // One workspace per thread and recipe: its integers keep their limbs from
+  // call to call, so the exact stage allocates only while they grow.
+  struct Workspace {
+    Exact_integer integers[N];
+    Matrix<Exact_integer, K> m;
+    std::array<Exact_integer, (1 << K)> minor;
+  };
+  thread_local Workspace w;
+  for (int k = 0; k < N; ++k) scale.assign_integer(k, w.integers[k]);
+  Recipe::fill(w.m, [&](int i, int j) -> const Exact_integer& { return w.integers[i * D + j]; });
+  return Recipe::sign_adjust * static_cast<Sign>(determinant_sign_in_place<K>(w.m, w.minor));
 }
 
 /// The stages after an undecided filter, under a guard of the floating-point

@@ -61,12 +61,17 @@ struct Orientation_recipe {
   static constexpr double epsilon = error_bounds::orientation_epsilon(D);
   static constexpr Sign sign_adjust = POSITIVE;
 
+  /// Writes the matrix into m (the exact stage reuses m's integers: no allocation).
   template <class T, class Coord>
-  static Matrix<T, size> matrix(const Coord& c) {
-    Matrix<T, size> m;
+  static void fill(Matrix<T, size>& m, const Coord& c) {
     for (int i = 0; i < D; ++i)
       for (int j = 0; j < D; ++j)
         m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = c(i + 1, j) - c(0, j);
+  }
+  template <class T, class Coord>
+  static Matrix<T, size> matrix(const Coord& c) {
+    Matrix<T, size> m;
+    fill(m, c);
     return m;
   }
   static Predicate_stats& stats() { return predicate_stats().orientation[D]; }

@@ -76,16 +76,21 @@ struct Side_of_sphere_recipe {
   static constexpr double epsilon = error_bounds::side_of_sphere_epsilon(D);
   static constexpr Sign sign_adjust = D % 2 == 0 ? POSITIVE : NEGATIVE;
 
+  /// Writes the matrix into m (the exact stage reuses m's integers: no allocation).
   template <class T, class Coord>
-  static Matrix<T, size> matrix(const Coord& c) {
-    Matrix<T, size> m;
+  static void fill(Matrix<T, size>& m, const Coord& c) {
     for (int i = 0; i <= D; ++i) {
       auto& row = m[static_cast<std::size_t>(i)];
       for (int j = 0; j < D; ++j) row[static_cast<std::size_t>(j)] = c(i, j) - c(D + 1, j);
-      T lifted = row[0] * row[0];
-      for (int j = 1; j < D; ++j) lifted += row[static_cast<std::size_t>(j)] * row[static_cast<std::size_t>(j)];
-      row[static_cast<std::size_t>(D)] = lifted;
+      T& lifted = row[static_cast<std::size_t>(D)];
+      lifted = row[0] * row[0];
+      for (int j = 1; j < D; ++j) add_product(lifted, row[static_cast<std::size_t>(j)], row[static_cast<std::size_t>(j)]);
     }
+  }
+  template <class T, class Coord>
+  static Matrix<T, size> matrix(const Coord& c) {
+    Matrix<T, size> m;
+    fill(m, c);
     return m;
   }
   static Predicate_stats& stats() { return predicate_stats().side_of_sphere[D]; }
