@@ -100,6 +100,9 @@ void check_orientation(const std::vector<Point<D>>& points, Degeneracy degenerac
   double ignored;
   tally.check_stage<D>("orientation filter on points scaled by 2^s", expected,
                        stages::filter_scaled<Orientation_recipe<D>, D>(refs, &ignored), tally.scaled_undecided, points);
+  int unused_undecided = 0;
+  tally.check_stage<D>("orientation exact in double", expected, stages::exact_in_double<Orientation_recipe<D>, D>(refs),
+                       unused_undecided, points);
   tally.check_stage<D>("orientation static filter", expected, static_filter_of<D>(points).orientation(refs),
                        tally.static_undecided, points);
   tally.check_stage<D>("orientation static filter, wide box", expected,
@@ -130,6 +133,9 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
   tally.check_stage<D>("sphere filter on points scaled by 2^s", expected,
                        stages::filter_scaled<Side_of_sphere_recipe<D>, D>(refs, &ignored), tally.scaled_undecided,
                        points);
+  int unused_undecided = 0;
+  tally.check_stage<D>("sphere exact in double", expected,
+                       stages::exact_in_double<Side_of_sphere_recipe<D>, D>(refs), unused_undecided, points);
   tally.check_stage<D>("sphere static filter", expected, static_filter_of<D>(points).side_of_oriented_sphere(refs),
                        tally.static_undecided, points);
   tally.check_stage<D>("sphere static filter, wide box", expected,
@@ -268,6 +274,43 @@ TEST_CASE("predicate stats count the deciding stage", "[stats]") {
     CHECK(s.perturbed == 1);
     CHECK(s.calls() == 2);
   }
+}
+
+TEMPLATE_TEST_CASE_SIG("small integers: the double determinant is exact, zero included", "[predicates]",
+                       ((int D), D), 2, 3, 4, 5, 6) {
+  Rng rng(0xe8ac7 + D);
+  int decided = 0, zeros = 0;
+  for (int c = 0; c < 1000; ++c) {
+    // Cospherical and flat integer sets tie; random small integers mostly do not.
+    auto points = c % 3 == 0 ? dewall::test::cospherical_integer_points<D>(rng, D + 2)
+                             : c % 3 == 1 ? dewall::test::flat_integer_points<D>(rng, D + 2, D - 1)
+                                          : dewall::test::lattice_points<D>(rng, D + 2, -6, 6);
+    Sphere_points<D> refs;
+    Orientation_points<D> simplex;
+    for (int i = 0; i <= D + 1; ++i) refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+    for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+    std::array<Point<D>, D + 1> first;
+    for (int i = 0; i <= D; ++i) first[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
+    const auto o = stages::exact_in_double<Orientation_recipe<D>, D>(simplex);
+    const auto s = stages::exact_in_double<Side_of_sphere_recipe<D>, D>(refs);
+    if (o) CHECK(*o == dewall::test::gmp_orientation<D>(first));
+    if (s) CHECK(*s == dewall::test::gmp_side_of_oriented_sphere<D>(first, points[D + 1]));
+    if (o && s) ++decided;
+    if (s && *s == ZERO) ++zeros;
+  }
+  CHECK(decided > 600);  // small integers (in 6D some sets exceed the 2^52 bound)
+  CHECK(zeros > 100);
+  // Not integers, or too large: never decides.
+  std::array<Point<D>, D + 1> half;
+  Orientation_points<D> h;
+  for (int i = 0; i <= D; ++i) {
+    half[static_cast<std::size_t>(i)][i % D] = i == D ? 0.5 : 1;
+    h[static_cast<std::size_t>(i)] = &half[static_cast<std::size_t>(i)];
+  }
+  CHECK(!stages::exact_in_double<Orientation_recipe<D>, D>(h));
+  half[0][0] = 0x1p21;
+  half[D][0] = 0;
+  CHECK(!stages::exact_in_double<Orientation_recipe<D>, D>(h));
 }
 
 TEMPLATE_TEST_CASE_SIG("the static filter decides most calls on spread points, and never wrongly", "[predicates]",
