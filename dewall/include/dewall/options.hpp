@@ -30,7 +30,9 @@ enum class Engine {
   /// Delaunay_triangulation), compiled into the library.
   cgal,
   /// The project's own incremental construction only (Bowyer–Watson over the
-  /// project's kernel: dewall/detail/incremental_delaunay.hpp).
+  /// project's kernel: dewall/detail/incremental_delaunay.hpp). Its 32-bit cell
+  /// references hold 2^30 cells in 2D and 3D (about 1.6·10^8 points in 3D)
+  /// and 2^29 above; beyond, std::length_error.
   incremental,
   /// DeWall's walls down to regions of Options::region_points points, each
   /// region triangulated by the incremental construction and the simplices
@@ -44,8 +46,9 @@ enum class Engine {
 /// region's size, a spent search budget, 4D and up) in dimension D: the
 /// project's own where it is faster than CGAL's on one thread (4D and up:
 /// half CGAL dD's time on uniform points), CGAL's in 2D and 3D, where what is
-/// left to it is mostly near-cospherical (spheres, shells, lattices) and our
-/// exact stage (GMP) is slower than CGAL's (points on a sphere, 10^5: 4.5×).
+/// left to it is mostly near-cospherical (spheres, shells, lattices), where
+/// nearly every sphere test needs the exact stage and ours (GMP) is slower
+/// than CGAL's (points on a sphere, 10^5, one thread: 1.6× CGAL's time).
 /// docs/engines.md has the measurements.
 constexpr Engine default_incremental_engine(int dimension) {
   return dimension >= 4 ? Engine::incremental : Engine::cgal;

@@ -38,8 +38,9 @@
 //        with the finite cell behind it — see in_conflict);
 //     c. star: each boundary facet of the cavity plus p is a new cell; the new
 //        cells are glued to the outside across that facet and to each other
-//        across their facets through p, matched by the D − 1 other vertices
-//        in a small hash table.
+//        across their facets through p: in 2D and 3D through a table indexed
+//        by the facets' directed keys (glue_star_directed), above 3D and for
+//        very large cavities by their D − 1 other vertices in a hash table.
 // Expected O(n log n) for points in general position (BRIO), the walk and the
 // cavities O(1) per point on well-spread data.
 #pragma once
@@ -54,6 +55,7 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "dewall/detail/assert.hpp"
@@ -74,6 +76,7 @@ struct Incremental_statistics {
   std::size_t walk_steps = 0;     // cells crossed while locating
   std::size_t conflict_cells = 0; // cells destroyed, summed over insertions
   std::size_t created_cells = 0;  // cells made, summed over insertions
+  std::size_t ridge_table_stars = 0;  // stars glued through the ridge hash table
 };
 
 /// The Delaunay triangulation of distinct points, built incrementally.
@@ -93,8 +96,10 @@ class Incremental_delaunay {
 
   /// Triangulates `count` points (distinct, finite): point k's coordinates
   /// are coordinates(k) (an array of D doubles), its id for the caller id(k)
-  /// (input_index returns it). Returns false, having built nothing, when the
-  /// points do not span E^D.
+  /// (input_index returns it). Returns false when the points do not span E^D
+  /// (the object then holds nothing usable). \throws std::length_error beyond
+  /// max_slots cells (2^30 in 2D and 3D, 2^29 above); after an exception the
+  /// object is unusable.
   template <class Coordinates, class Id>
   bool build(std::size_t count, Coordinates&& coordinates, Id&& id) {
     if (count < static_cast<std::size_t>(D + 1)) return false;
@@ -127,17 +132,22 @@ class Incremental_delaunay {
   /// Tests: run is_valid() after every insertion (O(n) each), throwing
   /// std::logic_error at the first failure.
   bool check_each_insertion = false;
+  /// Tests: glue every star through the ridge hash table (in 2D and 3D only
+  /// cavities of 127 boundary vertices or more take it otherwise).
+  bool ridge_table_only = false;
 
   /// Tests: the cells in conflict with q (not a vertex), as insertion would
   /// find them (the walk, then the breadth-first search), sorted.
+  /// q may lie outside the points' box: the static filter, whose bound
+  /// assumes it inside, is off for the call.
   std::vector<std::size_t> cavity(const Point& q) {
+    const auto filter = std::exchange(static_filter_, kernel::Static_filter_d<D>());
     find_cavity(q, infinite);
+    static_filter_ = filter;
     std::vector<std::size_t> cells = cavity_;
     std::sort(cells.begin(), cells.end());
     return cells;
   }
-  /// Tests: whether cell c is in conflict with q (see in_conflict).
-  bool conflicts(std::size_t c, const Point& q) const { return in_conflict(c, q); }
   /// build() for points given as Point_d, their ids their positions.
   bool build(std::span<const Point> points) {
     return build(points.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[k].x; },
@@ -182,7 +192,9 @@ class Incremental_delaunay {
 
  private:
   static constexpr std::uint32_t facet_mask = (1u << facet_bits) - 1;
-  static constexpr std::size_t max_slots = std::size_t{1} << (32 - facet_bits);
+  // The largest reference stays below the ridge table's two sentinels
+  // (none = 2^32 − 1, taken = 2^32 − 2).
+  static constexpr std::size_t max_slots = ((std::size_t{1} << 32) - 2) >> facet_bits;
   static std::uint32_t reference(std::size_t c, int i) {
     return static_cast<std::uint32_t>(c) << facet_bits | static_cast<std::uint32_t>(i);
   }
@@ -264,6 +276,7 @@ class Incremental_delaunay {
         cells_[cb].n[ib] = reference(ca, ia);
       }
     free_.clear();
+    stats_ = {};
     finite_cells_ = 1;
     last_ = 0;
     mark_.assign(cells_.size(), 0);
@@ -367,7 +380,9 @@ class Incremental_delaunay {
       else if (!free_.empty()) s = free_.back(), free_.pop_back();
       else {
         s = cells_.size();
-        if (s >= max_slots) throw Invalid_input("too many cells for the incremental engine's 32-bit cell references");
+        if (s >= max_slots)
+          throw std::length_error("dewall: the incremental engine's 32-bit cell references hold at most " +
+                                  std::to_string(max_slots) + " cells");
         cells_.emplace_back();
         mark_.push_back(0);
       }
@@ -384,7 +399,10 @@ class Incremental_delaunay {
         last_ = s;
       }
     }
-    if (!glue_star_directed()) glue_star_by_ridges();
+    if (ridge_table_only || !glue_star_directed()) {
+      glue_star_by_ridges();
+      ++stats_.ridge_table_stars;
+    }
     for (; reused < cavity_.size(); ++reused) {
       cells_[cavity_[reused]].v[0] = free_slot;
       free_.push_back(static_cast<Index>(cavity_[reused]));
@@ -419,7 +437,8 @@ class Incremental_delaunay {
   /// key matches each facet with the entry of the reversed key: one write and
   /// one read per facet, no search, no collision, nothing to clear (every
   /// entry read was written in this insertion). False, having glued nothing,
-  /// above 3D and for cavities of `star_table_side` boundary vertices or more.
+  /// above 3D and for cavities of star_table_side − 1 finite boundary
+  /// vertices or more (number 0 is the infinite vertex's).
   bool glue_star_directed() {
     if constexpr (D > 3) {
       return false;

@@ -198,7 +198,10 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 /// exactly; if then K!·Π_j M_j < 2^52 (M_j the largest |entry| of column j),
 /// every value the expansion forms — a minor of size r is a sum of r!
 /// products of entries from distinct columns — is an integer below 2^52, so
-/// the double determinant is exact, zero included. The product is formed in
+/// the double determinant is exact, zero included. (A column of zeros makes
+/// the bound 0 and lets through minors of the other columns that may round,
+/// but every term of the expansion then holds a zero factor from that column,
+/// so the result is exactly ±0, the right answer.) The product is formed in
 /// double: each rounding is relative 2^-52 at most, far inside the margin
 /// (the test asks 2^52 where 2^53 would do).
 template <class Recipe, int D>
