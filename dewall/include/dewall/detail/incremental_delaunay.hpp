@@ -103,16 +103,9 @@ class Incremental_delaunay {
   template <class Coordinates, class Id>
   bool build(std::size_t count, Coordinates&& coordinates, Id&& id) {
     if (count < static_cast<std::size_t>(D + 1)) return false;
-    std::vector<std::uint32_t> order = brio_order<D>(count, coordinates);
-    {
-      std::array<double, D> lo = coordinates(0), hi = coordinates(0);
-      for (std::size_t k = 1; k < count; ++k)
-        for (int j = 0; j < D; ++j) {
-          lo[j] = std::min(lo[j], coordinates(k)[j]);
-          hi[j] = std::max(hi[j], coordinates(k)[j]);
-        }
-      static_filter_ = kernel::Static_filter_d<D>(lo, hi);
-    }
+    const Box<D> box = bounding_box<D>(count, coordinates);
+    std::vector<std::uint32_t> order = brio_order<D>(count, coordinates, box);
+    static_filter_ = kernel::Static_filter_d<D>(box.lo, box.hi);
     if (!start(coordinates, order)) return false;
     points_.resize(count);
     input_.resize(count);

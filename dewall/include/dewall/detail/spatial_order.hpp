@@ -94,22 +94,35 @@ inline void radix_sort(std::vector<std::pair<std::uint64_t, std::uint32_t>>& ite
   }
 }
 
-/// The BRIO order of `count` points: a permutation of 0 … count − 1.
-/// `coords(i)` gives point i's coordinates (an array of D doubles, finite).
-/// Deterministic: a function of the coordinates and `seed`.
-template <int D, class Coords>
-std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, std::size_t smallest_round = 1000,
-                                      std::uint64_t seed = 0x5eed) {
+/// The smallest box [lo, hi] holding `count` points (coords(i): point i's
+/// coordinates); lo = +inf, hi = −inf when there are none.
+template <int D>
+struct Box {
   std::array<double, D> lo, hi;
-  lo.fill(std::numeric_limits<double>::infinity());
-  hi.fill(-std::numeric_limits<double>::infinity());
+};
+template <int D, class Coords>
+Box<D> bounding_box(std::size_t count, Coords&& coords) {
+  Box<D> box;
+  box.lo.fill(std::numeric_limits<double>::infinity());
+  box.hi.fill(-std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < count; ++i) {
     const auto& x = coords(i);
     for (int j = 0; j < D; ++j) {
-      lo[j] = std::min(lo[j], x[j]);
-      hi[j] = std::max(hi[j], x[j]);
+      box.lo[j] = std::min(box.lo[j], x[j]);
+      box.hi[j] = std::max(box.hi[j], x[j]);
     }
   }
+  return box;
+}
+
+/// The BRIO order of `count` points: a permutation of 0 … count − 1.
+/// `coords(i)` gives point i's coordinates (an array of D doubles, finite);
+/// `box` is bounding_box(count, coords). Deterministic: a function of the
+/// coordinates and `seed`.
+template <int D, class Coords>
+std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const Box<D>& box,
+                                      std::size_t smallest_round = 1000, std::uint64_t seed = 0x5eed) {
+  const auto& [lo, hi] = box;
   constexpr int bits = 60 / D < 16 ? 60 / D : 16;
   constexpr int round_shift = D * bits;  // the round above the Hilbert index
   const double cells = static_cast<double>((std::uint32_t{1} << bits) - 1);
@@ -143,6 +156,12 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, std::s
   std::vector<std::uint32_t> order(count);
   for (std::size_t k = 0; k < count; ++k) order[k] = keyed[k].second;
   return order;
+}
+
+/// The same, computing the box.
+template <int D, class Coords>
+std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords) {
+  return brio_order<D>(count, coords, bounding_box<D>(count, coords));
 }
 
 }  // namespace dewall::detail
