@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <optional>
 #include <random>
 #include <sstream>
@@ -39,6 +41,9 @@ constexpr int mismatches_shown = 3;
 struct Tally {
   int cases = 0, mismatches = 0, filter_undecided = 0, interval_undecided = 0, scaled_undecided = 0, exact_zero = 0,
       static_undecided = 0;
+  // Calls the exact stage's fixed-width path decided, and of those, exact
+  // zeros: the test below asks that the path was reached.
+  int wide_decided = 0, wide_zero = 0;
   std::string report;
 
   template <int D>
@@ -79,6 +84,20 @@ Static_filter_d<D> static_filter_of(const std::vector<Point<D>>& points, bool wi
   return Static_filter_d<D>(lo, hi);
 }
 
+/// The exact stage's fixed-width path on its own (it may decline).
+template <class Recipe, int D>
+void check_fixed_width(const Point_refs<D, Recipe::arity>& refs, int expected, const std::vector<Point<D>>& points,
+                       Tally& tally) {
+  const auto scale = stages::common_scale_of<Recipe, D>(refs);
+  int unused_undecided = 0;
+  const auto got = stages::exact_small_entries<Recipe, D>(scale, scale.max_bits());
+  tally.check_stage<D>("exact stage, fixed width", expected, got, unused_undecided, points);
+  if (got) {
+    ++tally.wide_decided;
+    if (*got == ZERO) ++tally.wide_zero;
+  }
+}
+
 template <int D>
 void check_orientation(const std::vector<Point<D>>& points, Degeneracy degeneracy, Tally& tally) {
   std::array<Point<D>, D + 1> simplex;
@@ -91,6 +110,7 @@ void check_orientation(const std::vector<Point<D>>& points, Degeneracy degenerac
   if (degeneracy == Degeneracy::flat || degeneracy == Degeneracy::flat_but_last)
     tally.check<D>("generator: orientation of a flat set", 0, expected, points);
   if (expected == 0) ++tally.exact_zero;
+  check_fixed_width<Orientation_recipe<D>, D>(refs, expected, points, tally);
   tally.check<D>("orientation_d", expected, orientation_d<D>(refs), points);
   tally.check<D>("orientation_d_exact", expected, orientation_d_exact<D>(refs), points);
   tally.check_stage<D>("orientation_d_filter", expected, orientation_d_filter<D>(refs), tally.filter_undecided,
@@ -123,6 +143,7 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
   if (degeneracy == Degeneracy::flat || degeneracy == Degeneracy::cospherical)
     tally.check<D>("generator: sphere test of a cospherical set", 0, expected, points);
   if (expected == 0) ++tally.exact_zero;
+  check_fixed_width<Side_of_sphere_recipe<D>, D>(refs, expected, points, tally);
   tally.check<D>("side_of_oriented_sphere_d", expected, side_of_oriented_sphere_d<D>(refs), points);
   tally.check<D>("side_of_oriented_sphere_d_exact", expected, side_of_oriented_sphere_d_exact<D>(refs), points);
   tally.check_stage<D>("side_of_oriented_sphere_d_filter", expected, side_of_oriented_sphere_d_filter<D>(refs),
@@ -187,6 +208,7 @@ TEMPLATE_TEST_CASE_SIG("every predicate stage agrees with GMP rationals", "[gmp]
   INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
   const auto families = dewall::test::point_set_families<D>();
   long total_cases = 0, filter_undecided = 0, interval_undecided = 0, exact_zero = 0;
+  long wide_decided = 0, wide_zero = 0;
   for (std::size_t f = 0; f < families.size(); ++f) {
     const auto& family = families[f];
     Rng rng(seed + f);
@@ -205,137 +227,69 @@ TEMPLATE_TEST_CASE_SIG("every predicate stage agrees with GMP rationals", "[gmp]
     filter_undecided += tally.filter_undecided;
     interval_undecided += tally.interval_undecided;
     exact_zero += tally.exact_zero;
+    wide_decided += tally.wide_decided;
+    wide_zero += tally.wide_zero;
   }
   // The families reach every stage: the filter fails on many inputs, the
   // interval stage on some, and many answers are exactly zero.
   CHECK(total_cases == cases_per_family * static_cast<long>(families.size()));
   CHECK(filter_undecided > total_cases / 4);
   CHECK(exact_zero > total_cases / 4);
+  // The fixed-width path decides many calls (two per case), zeros among them.
+  INFO("fixed-width path: " << wide_decided << " decided, " << wide_zero << " zero");
+  CHECK(wide_decided > total_cases / 2);
+  CHECK(wide_zero > 0);
 }
 
-TEMPLATE_TEST_CASE_SIG("far from 1: the filter decides on the points scaled by a power of two", "[predicates]",
-                       ((int D), D), 2, 3, 4, 5, 6) {
-  Rng rng(20261122 + D);
-  std::uniform_real_distribution<double> unit(-1, 1);
-  for (const int exponent : {600, -600, 900, -900}) {
-    for (int trial = 0; trial < 50; ++trial) {
-      std::array<Point<D>, D + 2> p;
-      for (auto& q : p)
-        for (int j = 0; j < D; ++j) q[j] = std::ldexp(unit(rng), exponent);
-      Sphere_points<D> sphere;
-      Orientation_points<D> simplex;
-      for (int i = 0; i <= D + 1; ++i) sphere[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
-      for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &p[static_cast<std::size_t>(i)];
-      std::array<Point<D>, D + 1> first;
-      std::copy_n(p.begin(), D + 1, first.begin());
-      // Outside the plain filter's domain (its products would overflow or underflow) …
-      CHECK(!side_of_oriented_sphere_d_filter<D>(sphere));
-      // … but exactly scaled into it, decided, and right.
-      double computed;
-      const auto o = stages::filter_scaled<Orientation_recipe<D>, D>(simplex, &computed);
-      const auto s = stages::filter_scaled<Side_of_sphere_recipe<D>, D>(sphere, &computed);
-      REQUIRE(o);
-      REQUIRE(s);
-      CHECK(*o == dewall::test::gmp_orientation<D>(first));
-      CHECK(*s == dewall::test::gmp_side_of_oriented_sphere<D>(first, p[D + 1]));
+TEST_CASE("Wide_integer: its operations agree with GMP modulo 2^(64 L)", "[predicates]") {
+  Rng rng(20261125);
+  const auto check_width = [&]<int L>(std::integral_constant<int, L>) {
+    using Wide = dewall::kernel::Wide_integer<L>;
+    const mpz_class modulus = mpz_class(1) << (64 * L);
+    std::uniform_int_distribution<std::int64_t> limb(std::numeric_limits<std::int64_t>::min(),
+                                                     std::numeric_limits<std::int64_t>::max());
+    std::uniform_int_distribution<int> coin(0, 3);
+    // A random signed 128-bit value, often small (carries and borrows across zero).
+    const auto make = [&](Wide& w, mpz_class& z) {
+      const std::int64_t high = coin(rng) == 0 ? 0 : coin(rng) == 0 ? -1 : limb(rng);
+      const auto low = static_cast<std::uint64_t>(limb(rng));
+      const auto v = static_cast<dewall::kernel::Int128>(static_cast<dewall::kernel::Uint128>(high) << 64 | low);
+      w = Wide::of(v);
+      z = (mpz_class(static_cast<long>(high)) << 64) + mpz_class(static_cast<unsigned long>(low));
+    };
+    // The two's-complement reading of z mod 2^(64L).
+    const auto reduce = [&](mpz_class z) {
+      z %= modulus;
+      if (z < 0) z += modulus;
+      if (z >= modulus / 2) z -= modulus;
+      return z;
+    };
+    const auto same = [&](const auto& w, const mpz_class& z) {
+      const mpz_class r = reduce(z);
+      const int bits = r == 0 ? 0 : static_cast<int>(mpz_sizeinbase(mpz_class(abs(r)).get_mpz_t(), 2));
+      return w.sign() == sgn(r) && w.magnitude_bits() == bits;
+    };
+    for (int trial = 0; trial < 2000; ++trial) {
+      Wide a, b, c;
+      mpz_class x, y, z;
+      make(a, x);
+      make(b, y);
+      make(c, z);
+      REQUIRE(same(a, x));
+      CHECK(same(a + b, x + y));
+      CHECK(same(a - b, x - y));
+      CHECK(same(-a, -x));
+      CHECK(same(a * b, x * y));  // wraps for L = 2
+      CHECK(same(a * b * c - c, x * y * z - z));
+      const auto m = static_cast<std::uint64_t>(limb(rng));
+      CHECK(same(a.times(m), x * mpz_class(static_cast<unsigned long>(m))));
+      CHECK(same(a.shifted_limb(), x << 64));
+      const auto wider = dewall::kernel::Wide_integer<L + 2>::extended(a * b);
+      CHECK(wider.sign() == sgn(reduce(x * y)));
+      CHECK(wider.magnitude_bits() == (a * b).magnitude_bits());
     }
-  }
-  // Magnitudes 2^1100 apart in one call: no power of two scales both exactly.
-  std::array<Point<D>, D + 1> mixed{};
-  for (int i = 1; i <= D; ++i) mixed[static_cast<std::size_t>(i)][i - 1] = 0x1p500;
-  mixed[0][0] = 0x1p-600;
-  Orientation_points<D> refs;
-  for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &mixed[static_cast<std::size_t>(i)];
-  double computed;
-  CHECK(!stages::filter_scaled<Orientation_recipe<D>, D>(refs, &computed));
-  CHECK(orientation_d<D>(refs) == dewall::test::gmp_orientation<D>(mixed));
-}
-
-TEST_CASE("predicate stats count the deciding stage", "[stats]") {
-  if constexpr (!predicate_stats_enabled) {
-    SUCCEED("DEWALL_PREDICATE_STATS is not defined: counters are compiled out");
-  } else {
-    auto& o = predicate_stats().orientation[3];
-    auto& s = predicate_stats().side_of_sphere[3];
-    o.reset();
-    s.reset();
-    const Point<3> a{{0, 0, 0}}, b{{1, 0, 0}}, c{{0, 1, 0}}, d{{0, 0, 1}}, e{{1, 1, 0}}, g{{0.25, 0.25, 0.25}};
-    CHECK(orientation_d(a, b, c, d) == POSITIVE);  // decided by the filter
-    CHECK(o.filter == 1);
-    // Coplanar (z = x + y) with no zero column: only the exact stage proves ZERO.
-    const Point<3> b1{{1, 0, 1}}, c1{{0, 1, 1}}, e1{{1, 1, 2}};
-    CHECK(orientation_d(a, b1, c1, e1) == ZERO);
-    CHECK(o.exact == 1);
-    CHECK(o.calls() == 2);
-    CHECK(side_of_oriented_sphere_d(a, b, c, d, g) == ON_POSITIVE_SIDE);
-    CHECK(s.filter == 1);
-    CHECK(side_of_oriented_sphere_d_sos(a, b, c, d, e) == ON_NEGATIVE_SIDE);  // cospherical
-    CHECK(s.exact == 1);
-    CHECK(s.perturbed == 1);
-    CHECK(s.calls() == 2);
-  }
-}
-
-TEMPLATE_TEST_CASE_SIG("small integers: the double determinant is exact, zero included", "[predicates]",
-                       ((int D), D), 2, 3, 4, 5, 6) {
-  Rng rng(0xe8ac7 + D);
-  int decided = 0, zeros = 0;
-  for (int c = 0; c < 1000; ++c) {
-    // Cospherical and flat integer sets tie; random small integers mostly do not.
-    auto points = c % 3 == 0 ? dewall::test::cospherical_integer_points<D>(rng, D + 2)
-                             : c % 3 == 1 ? dewall::test::flat_integer_points<D>(rng, D + 2, D - 1)
-                                          : dewall::test::lattice_points<D>(rng, D + 2, -6, 6);
-    Sphere_points<D> refs;
-    Orientation_points<D> simplex;
-    for (int i = 0; i <= D + 1; ++i) refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    std::array<Point<D>, D + 1> first;
-    for (int i = 0; i <= D; ++i) first[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
-    const auto o = stages::exact_in_double<Orientation_recipe<D>, D>(simplex);
-    const auto s = stages::exact_in_double<Side_of_sphere_recipe<D>, D>(refs);
-    if (o) CHECK(*o == dewall::test::gmp_orientation<D>(first));
-    if (s) CHECK(*s == dewall::test::gmp_side_of_oriented_sphere<D>(first, points[D + 1]));
-    if (o && s) ++decided;
-    if (s && *s == ZERO) ++zeros;
-  }
-  CHECK(decided > 600);  // small integers (in 6D some sets exceed the 2^52 bound)
-  CHECK(zeros > 100);
-  // Not integers, or too large: never decides.
-  std::array<Point<D>, D + 1> half;
-  Orientation_points<D> h;
-  for (int i = 0; i <= D; ++i) {
-    half[static_cast<std::size_t>(i)][i % D] = i == D ? 0.5 : 1;
-    h[static_cast<std::size_t>(i)] = &half[static_cast<std::size_t>(i)];
-  }
-  CHECK(!stages::exact_in_double<Orientation_recipe<D>, D>(h));
-  half[0][0] = 0x1p21;
-  half[D][0] = 0;
-  CHECK(!stages::exact_in_double<Orientation_recipe<D>, D>(h));
-}
-
-TEMPLATE_TEST_CASE_SIG("the static filter decides most calls on spread points, and never wrongly", "[predicates]",
-                       ((int D), D), 2, 3) {
-  Rng rng(0x57a71c + D);
-  std::array<double, D> lo, hi;
-  lo.fill(-1);
-  hi.fill(1);
-  const Static_filter_d<D> filter(lo, hi);
-  REQUIRE(filter.valid());
-  int decided = 0, cases = 2000;
-  for (int c = 0; c < cases; ++c) {
-    const auto points = dewall::test::uniform_points<D>(rng, D + 2);
-    Sphere_points<D> refs;
-    Orientation_points<D> simplex;
-    for (int i = 0; i <= D + 1; ++i) refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    for (int i = 0; i <= D; ++i) simplex[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    const auto o = filter.orientation(simplex);
-    const auto s = filter.side_of_oriented_sphere(refs);
-    if (o && s) ++decided;
-    if (o) CHECK(*o == orientation_d<D>(simplex));
-    if (s) CHECK(*s == side_of_oriented_sphere_d<D>(refs));
-  }
-  CHECK(decided > cases * 9 / 10);
-  // Outside the domain (a box wider than 2^100) it never decides.
-  hi[0] = 0x1p101;
-  CHECK(!Static_filter_d<D>(lo, hi).valid());
+  };
+  check_width(std::integral_constant<int, 2>{});
+  check_width(std::integral_constant<int, 3>{});
+  check_width(std::integral_constant<int, 5>{});
 }

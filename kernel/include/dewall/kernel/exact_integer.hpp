@@ -9,20 +9,18 @@
 
 #include <gmpxx.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/wide_integer.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::kernel {
 
 using Exact_integer = mpz_class;
-
-/// 128-bit integers (a GCC/Clang extension) for the exact stage's fast path.
-__extension__ typedef __int128 Int128;
-__extension__ typedef unsigned __int128 Uint128;
 
 namespace detail {
 
@@ -59,16 +57,19 @@ class Common_scale {
       if (parts_[i].exponent < min_exponent_) min_exponent_ = parts_[i].exponent;
     }
   }
-  /// Whether every values[i]·2^-E fits in `bits` bits (plus sign).
-  bool fits(int bits) const {
+  /// The bits of the largest |values[i]|·2^-E (0 when every value is 0).
+  int max_bits() const {
+    int bits = 0;
     for (const auto& s : parts_)
-      if (s.mantissa != 0 &&
-          static_cast<int>(std::bit_width(static_cast<std::uint64_t>(s.mantissa < 0 ? -s.mantissa : s.mantissa))) +
-                  (s.exponent - min_exponent_) > bits)
-        return false;
-    return true;
+      if (s.mantissa != 0)
+        bits = std::max(bits, static_cast<int>(std::bit_width(
+                                  static_cast<std::uint64_t>(s.mantissa < 0 ? -s.mantissa : s.mantissa))) +
+                                  (s.exponent - min_exponent_));
+    return bits;
   }
-  /// values[i]·2^-E as a 128-bit integer. \pre fits(bits) with bits < 127.
+  /// Whether every values[i]·2^-E fits in `bits` bits (plus sign).
+  bool fits(int bits) const { return max_bits() <= bits; }
+  /// values[i]·2^-E as a 128-bit integer. \pre fits(bits) with bits ≤ 125.
   Int128 small_integer(int i) const {
     const auto& s = parts_[i];
     if (s.mantissa == 0) return 0;

@@ -146,11 +146,37 @@ inline int bit_width_128(Int128 v) {
   return static_cast<int>(high ? 64 + std::bit_width(high) : std::bit_width(static_cast<std::uint64_t>(a)));
 }
 
+/// The points' coordinates as integers on one binary scale (exact_integer.hpp).
+template <class Recipe, int D>
+Common_scale<Recipe::arity * D> common_scale_of(const Point_refs<D, Recipe::arity>& p) {
+  double coordinates[Recipe::arity * D];
+  for (int i = 0; i < Recipe::arity; ++i)
+    for (int j = 0; j < D; ++j) coordinates[i * D + j] = (*p[static_cast<std::size_t>(i)])[j];
+  return Common_scale<Recipe::arity * D>(coordinates);
+}
+
+/// The exact stage's fixed-width path (wide_integer.hpp): coordinates of at
+/// most 125 bits on the common scale, whose differences (< 2^126: exact modulo
+/// 2^128) all fit 62 bits; the lifted column (sums of squares, computed modulo
+/// 2^128) is then exact too (< 8·2^124). Nothing otherwise.
+template <class Recipe, int D, int N>
+std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordinate_bits) {
+  if (coordinate_bits > 125) return std::nullopt;
+  Uint128 integers[N];
+  for (int k = 0; k < N; ++k) integers[k] = static_cast<Uint128>(scale.small_integer(k));
+  const auto m = Recipe::template matrix<Uint128>([&](int i, int j) { return integers[i * D + j]; });
+  if (const auto s = small_entry_determinant_sign<Recipe::size, Recipe::spatial_columns>(m))
+    return Recipe::sign_adjust * static_cast<Sign>(*s);
+  return std::nullopt;
+}
+
 /// Stage 3: the same determinant over exact integers: 128-bit integers when a
 /// bound proves they cannot overflow (exactly degenerate inputs are mostly small
-/// integers: lattices, cospherical integer points), GMP otherwise. Exact for
-/// every finite input.
-/// Overflow bound: every value the expansion forms (entries, partial sums,
+/// integers: lattices, cospherical integer points), then integers as wide as
+/// each minor needs when the differences fit 62 bits (doubles on one scale:
+/// points on spheres and surfaces, near ties the filters cannot decide), GMP
+/// otherwise. Exact for every finite input.
+/// 128-bit overflow bound: every value the expansion forms (entries, partial sums,
 /// minors) is at most K!·Π_j M_j in magnitude, M_j the largest entry of column j
 /// (a minor of size r is a sum of r! products of entries from distinct columns).
 /// Inputs of at most 40 bits keep the entries themselves (differences, sums of
@@ -160,11 +186,9 @@ template <class Recipe, int D>
 Sign exact(const Point_refs<D, Recipe::arity>& p) {
   constexpr int N = Recipe::arity * D;
   constexpr int K = Recipe::size;
-  double coordinates[N];
-  for (int i = 0; i < Recipe::arity; ++i)
-    for (int j = 0; j < D; ++j) coordinates[i * D + j] = (*p[static_cast<std::size_t>(i)])[j];
-  const Common_scale<N> scale(coordinates);
-  if (scale.fits(40)) {
+  const auto scale = common_scale_of<Recipe, D>(p);
+  const int coordinate_bits = scale.max_bits();
+  if (coordinate_bits <= 40) {
     Int128 small[N];
     for (int k = 0; k < N; ++k) small[k] = scale.small_integer(k);
     const auto m = Recipe::template matrix<Int128>([&](int i, int j) { return small[i * D + j]; });
@@ -179,6 +203,7 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
       return Recipe::sign_adjust * (det > 0 ? POSITIVE : det < 0 ? NEGATIVE : ZERO);
     }
   }
+  if (const auto s = exact_small_entries<Recipe, D>(scale, coordinate_bits)) return *s;
   // One workspace per thread and recipe: its integers keep their limbs from
   // call to call, so the exact stage allocates only while they grow.
   struct Workspace {
