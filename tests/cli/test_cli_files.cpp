@@ -337,7 +337,7 @@ TEST_CASE("files: hostile tokens are escaped and cut in messages, a BOM is skipp
   }
 }
 
-TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbox, .ele)", "[cli][files]") {
+TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbox, .ele, Qhull)", "[cli][files]") {
   const auto cli = fresh("files_test_rows");
   cli.write("x.node", "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n4 2 2\n");
   cli.write("ok.node", "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n# end\n\n");
@@ -361,6 +361,37 @@ TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbo
   const auto ele = cli("certify p.txt x.ele");
   CHECK(ele.status == 2);
   CHECK(ele.err.find("x.ele:4: more rows than the header announces (2 simplices)") != std::string::npos);
+  cli.write("x.qh", "2\n0 1 2\n1 3 2\n0 1 3\n");  // qdelaunay i: a count, then the facets
+  const auto qhull = cli("certify p.txt x.qh");
+  CHECK(qhull.status == 2);
+  CHECK(qhull.err.find("x.qh:4: more rows than the header announces (2 facets)") != std::string::npos);
+}
+
+TEST_CASE("files: a VTK POINTS count that does not match its data is exit 2 (binary and ASCII)", "[cli][files]") {
+  const auto cli = fresh("files_test_vtk_count");
+  REQUIRE(cli("generate uniform 50 --dim 3 --seed 1 -o b.vtk").status == 0);  // binary, with a CELLS section
+  const std::string file = slurp(cli.path("b.vtk"));
+  const auto at = file.find("POINTS 50 double");
+  REQUIRE(at != std::string::npos);
+  CHECK(cli("triangulate b.vtk").status == 0);
+  // 60 used to read 10 "points" out of the CELLS section, 40 to ignore the last ten: exit 0 both.
+  for (const std::string count : {"60", "40"}) {
+    CAPTURE(count);
+    std::string changed = file;
+    changed.replace(at + 7, 2, count);
+    cli.write("c.vtk", changed);
+    const auto r = cli("triangulate c.vtk");
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("c.vtk:5: count mismatch: the POINTS section announces " + count + " points") != std::string::npos);
+  }
+  cli.write("a.vtk", "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n"
+                     "0 0 0\n1 0 0\n0 1 0\n1 1 0\nCELLS 1 5\n4 0 1 2 3\n");
+  const auto ascii = cli("triangulate a.vtk");
+  CHECK(ascii.status == 2);
+  CHECK(ascii.err.find("a.vtk:5: truncated: the POINTS section announces 5 points (15 coordinates), the file has 12 "
+                       "before 'CELLS' on line 10") != std::string::npos);
+  CHECK(ascii.err.find("not a number") == std::string::npos);
 }
 
 TEST_CASE("files: draw scales coordinates near the double range safely, refuses non-finite ones", "[cli][files]") {
