@@ -149,6 +149,7 @@ int command_draw(int argc, char** argv) {
   if (points_path == "-" && simplices_path == "-" && !walls)
     throw Usage_error("POINTS and SIMPLICES cannot both be standard input");
 
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
   if (table.dimension != 2)

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -81,6 +82,7 @@ int command_generate(int argc, char** argv) {
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   if (!seeded) {
     // Two draws: random_device yields 32 bits on common platforms.
     std::random_device device;

@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
 #include "dewall/io/vtk.hpp"
@@ -52,6 +53,7 @@ int command_triangulate(int argc, char** argv) {
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
                       " (.ele and .vtk files start with the count of simplices)");
   options.stream = stream;
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   io::Progress progress(!quiet && io::stderr_is_terminal());
   auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.

@@ -302,6 +302,19 @@ struct Output_file::Impl {
   }
 };
 
+namespace {
+
+/// How messages name an output path; the empty name as ''.
+std::string output_name(const std::string& path) { return path.empty() ? std::string("''") : printable(path); }
+
+/// resolve(), and the empty name refused as the shell refuses `> ''`.
+Target resolve_output(const std::string& path, const std::string& name) {
+  if (path.empty()) throw failure(name, "cannot open", ENOENT);
+  return resolve(path, name);
+}
+
+}  // namespace
+
 Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>()) {
   auto& m = *impl_;
   if (path == "-") {
@@ -310,13 +323,42 @@ Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>
     m.fd = STDOUT_FILENO;
     m.owned = false;
   } else {
-    m.name = printable(path);
-    const Target t = resolve(path, m.name);
-    if (t.direct) m.open_direct(t);
-    else m.open_temporary(t);
+    m.name = output_name(path);
+    const Target t = resolve_output(path, m.name);
+    try {
+      if (t.direct) m.open_direct(t);
+      else m.open_temporary(t);
+    } catch (...) {
+      m.discard();  // a temporary created before the failure (the destructor does not run)
+      throw;
+    }
   }
   m.buffer.attach(m.fd);
   m.stream.rdbuf(&m.buffer);
+}
+
+void Output_file::probe(const std::string& path) {
+  if (path == "-") return;
+  const std::string name = output_name(path);
+  const Target t = resolve_output(path, name);
+  if (!t.direct) {
+    Impl m;
+    m.name = name;
+    try {
+      m.open_temporary(t);
+    } catch (...) {
+      m.discard();
+      throw;
+    }
+    m.discard();
+    return;
+  }
+  // Written in place, and not opened now: a FIFO's reader would take the
+  // probe's close for the end of the output. What can be told without opening:
+  if (!t.exists) return;
+  if (S_ISDIR(t.status.st_mode)) throw failure(name, "cannot open", EISDIR);
+  if (!S_ISSOCK(t.status.st_mode) && ::faccessat(AT_FDCWD, t.path.c_str(), W_OK, AT_EACCESS) != 0)
+    throw failure(name, "cannot open", errno);
 }
 
 Output_file::~Output_file() {

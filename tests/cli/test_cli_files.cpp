@@ -394,6 +394,42 @@ TEST_CASE("files: a VTK POINTS count that does not match its data is exit 2 (bin
   CHECK(ascii.err.find("not a number") == std::string::npos);
 }
 
+TEST_CASE("files: an output that cannot be written fails before the work, leaving nothing", "[cli][files]") {
+  const auto cli = fresh("files_test_output_first");
+  fs::create_directory(cli.path("dir"));
+  cli.write("line.txt", "0 0\n1 1\n2 2\n");  // collinear: triangulating it is exit 1, not 2
+  cli.write("old.txt", "old\n");
+  struct Target {
+    std::string path, message;
+  };
+  std::vector<Target> targets = {{"nodir/out.txt", "nodir/out.txt: cannot create a temporary file in nodir/"},
+                                 {"dir", "dir: cannot open: Is a directory"},
+                                 {"''", "'': cannot open: No such file or directory"}};
+  if (::geteuid() != 0) {  // root may write a read-only file
+    REQUIRE(::chmod(cli.path("old.txt").c_str(), 0444) == 0);
+    targets.push_back({"old.txt", "old.txt: cannot write: Permission denied"});
+  } else {
+    WARN("running as root: the read-only file case is skipped");
+  }
+  for (const auto& [target, message] : targets) {
+    CAPTURE(target);
+    for (const std::string command : {"triangulate line.txt", "triangulate line.txt --stream", "draw line.txt --walls",
+                                      "triangulate no-such-input.txt", "generate uniform 1000 --dim 2"}) {
+      CAPTURE(command);
+      const auto r = cli(command + " -o " + target);
+      CHECK(r.status == 2);
+      CHECK(r.err.find(message) != std::string::npos);
+      CHECK(r.err.find("collinear") == std::string::npos);      // not triangulated
+      CHECK(r.err.find("no-such-input") == std::string::npos);  // not even read
+      CHECK(r.err.find("seed") == std::string::npos);           // not generated
+    }
+  }
+  CHECK(slurp(cli.path("old.txt")) == "old\n");
+  CHECK(fs::is_empty(cli.path("dir")));
+  CHECK(others(cli.dir, {"p.txt", "line.txt", "old.txt", "dir", "out.txt", "err.txt"}).empty());
+  // (A FIFO is not opened by the check: "a FIFO's reader gets the output" above.)
+}
+
 TEST_CASE("files: draw scales coordinates near the double range safely, refuses non-finite ones", "[cli][files]") {
   const auto cli = fresh("files_test_draw_range");
   cli.write("big.txt", "1e308 1e308\n-1e308 -1e308\n1.7e308 -1.7e308\n-1e308 1.5e308\n0 0\n");

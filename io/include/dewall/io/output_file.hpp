@@ -62,6 +62,15 @@ class Output_file {
   /// direct target (a pipe or a device cannot seek).
   /// \throws Write_error when the write fails.
   bool patch(std::size_t offset, const void* data, std::size_t size);
+  /// Checks, before a long computation, that `path` can be written as the
+  /// constructor would write it, and leaves nothing behind: for a regular file
+  /// or a new name the temporary is created beside the target and removed (a
+  /// missing directory, a read-only file or directory, a directory as the
+  /// target, the empty name fail here); a target written in place is not
+  /// opened (a FIFO's reader would see its end), only checked to be writable
+  /// and not a directory. Standard output ("-") is not checked.
+  /// \throws Write_error, as the constructor would.
+  static void probe(const std::string& path);
   /// The target as messages name it ("<stdout>", or the path made printable).
   const std::string& name() const;
   /// True when the target is written in place (standard output, devices,
