@@ -22,7 +22,7 @@
 
 namespace dewall::cli {
 
-/// A usage error: printed with the usage text, exit status 2.
+/// A usage error: printed with where the help is (main.cpp), exit status 2.
 struct Usage_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };

@@ -159,7 +159,7 @@ std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_
   return operands;
 }
 
-std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::printable(path); }
+std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::file_name(path); }
 
 int report_invalid_input(const std::string& name, const Invalid_input& e, std::size_t first_index) {
   std::string message = e.what();

@@ -199,7 +199,7 @@ int command_draw(int argc, char** argv) {
   } else {
     triangles = read_triangles(simplices_path, table);
   }
-  if (output != "-") progress.phase("writing " + io::printable(output));  // no progress line inside the SVG on a terminal
+  if (output != "-") progress.phase("writing " + io::file_name(output));  // no progress line inside the SVG on a terminal
   io::write_output_file(output, [&](std::ostream& out) {
     write_svg(out, table, triangles, levels, static_cast<int>(width), walls);
   });

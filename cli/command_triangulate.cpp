@@ -58,7 +58,7 @@ int command_triangulate(int argc, char** argv) {
   auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
   if (io::is_vtk_path(output) && table.dimension > 3)
-    throw io::Vtk_unsupported(io::printable(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
+    throw io::Vtk_unsupported(io::file_name(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
                               " holds points of dimension " + std::to_string(table.dimension) +
                               " (write a plain simplex list instead)");
   Run run;

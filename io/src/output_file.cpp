@@ -25,7 +25,8 @@ namespace dewall::io {
 namespace {
 
 Write_error failure(const std::string& name, const std::string& what, int error) {
-  return Write_error(name + ": " + what + ": " + std::strerror(error));
+  // EFBIG: the process's file size limit (the CLI ignores SIGXFSZ to get here).
+  return Write_error(name + ": " + what + ": " + std::strerror(error) + (error == EFBIG ? " (a file size limit: ulimit -f)" : ""));
 }
 
 /// A stream buffer writing to a file descriptor with write(2). The first error
@@ -261,7 +262,7 @@ struct Output_file::Impl {
       disarm_temporary(slot);
       temporary.clear();
       if (error != EEXIST || attempt == 100)
-        throw failure(name, "cannot create a temporary file in " + printable(directory.empty() ? "." : directory), error);
+        throw failure(name, "cannot create a temporary file in " + file_name(directory.empty() ? "." : directory), error);
     }
     // Created with mode 0600: give the file the old file's mode (and owner
     // where permitted), or what a new file gets under the umask.
@@ -305,7 +306,7 @@ struct Output_file::Impl {
 namespace {
 
 /// How messages name an output path; the empty name as ''.
-std::string output_name(const std::string& path) { return path.empty() ? std::string("''") : printable(path); }
+std::string output_name(const std::string& path) { return path.empty() ? std::string("''") : file_name(path); }
 
 /// resolve(), and the empty name refused as the shell refuses `> ''`.
 Target resolve_output(const std::string& path, const std::string& name) {

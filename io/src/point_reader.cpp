@@ -49,13 +49,15 @@ bool next_data_line(detail::Line_source& source, std::string& line, Progress* pr
 
 /// True when the first data line starts rbox's header rather than a point: a
 /// lone number (no point has one coordinate), or a number followed by rbox's
-/// command line ("3 rbox 1000 D3", without '#') when the next line is a lone count.
+/// command line ("3 rbox 1000 D3", without '#'), recognised by its word "rbox"
+/// or, without it, when the next line is a lone count.
 bool is_rbox_header(const std::vector<std::string_view>& first, std::string_view second) {
   if (first.empty() || !detail::is_number(first[0])) return false;
   if (first.size() == 1) return true;
+  if (detail::is_number(first[1])) return false;
   std::size_t second_tokens = 0;
   detail::for_each_token(detail::without_comment(second), [&](std::string_view) { ++second_tokens; });
-  return !detail::is_number(first[1]) && second_tokens == 1;
+  return first[1] == "rbox" || second_tokens == 1;
 }
 
 std::vector<std::string_view> tokens_of(std::string_view line) {
@@ -83,14 +85,22 @@ Point_table read_points(std::istream& in, const std::string& name, Progress* pro
     t.dimension = static_cast<int>(dimension);
     if (!have_second)
       throw Parse_error(where(name, line_no) + "a lone dimension without rbox's count line (and no points)");
-    const auto count = parse_numbers(second, name, second_no);
-    if (count.size() != 1)
-      throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line");
-    if (!is_count(count[0]))
-      throw Parse_error(where(name, second_no) + "invalid point count " + quoted(tokens_of(second)[0]) +
+    const auto count_tokens = tokens_of(second);
+    if (count_tokens.size() != 1)
+      throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line, found " +
+                        quoted(detail::without_comment(second)));
+    const double count = detail::parse_double(count_tokens[0], name, second_no);
+    if (!is_count(count))
+      throw Parse_error(where(name, second_no) + "invalid point count " + quoted(count_tokens[0]) +
                         " (a non-negative integer)");
-    expected_count = static_cast<std::size_t>(count[0]);
+    expected_count = static_cast<std::size_t>(count);
     if (!next_data_line(source, line, progress)) line.clear();
+    // One number per line for three lines: not rbox, but a single column,
+    // which no point set is (without this, "expected 5 coordinates, found 1").
+    if (first.size() == 1 && !line.empty() && tokens_of(line).size() == 1)
+      throw Parse_error(where(name, source.number()) + "one value per line: points need 2 to 6 coordinates per line " +
+                        "(read as rbox's format, lines " + std::to_string(line_no) + " and " + std::to_string(second_no) +
+                        " would be the dimension and the point count)");
   } else {
     const auto values = parse_numbers(line, name, line_no);
     check_dimension(static_cast<double>(values.size()), std::to_string(values.size()), name, line_no);

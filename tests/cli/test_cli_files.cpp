@@ -548,6 +548,17 @@ TEST_CASE("quoting: printable, quoted and json_string", "[io][files]") {
   CHECK(printable("\xE2\x80\xAE" "txt") == "\\xe2\\x80\\xaetxt");      // right-to-left override
   CHECK(printable("\xC0\xAF\xED\xA0\x80") == "\\xc0\\xaf\\xed\\xa0\\x80");  // overlong, surrogate
   CHECK(printable(std::string(100, 'a'), 10) == "aaaaaaaaaa… (100 bytes)");
+  CHECK(printable("\xEF\xBB\xBF" "1\xE2\x80\x8B") == "\\xef\\xbb\\xbf1\\xe2\\x80\\x8b");  // a BOM, a zero-width space
+  CHECK(dewall::io::file_name("dir/file.txt") == "dir/file.txt");
+  const std::string long_name = "/a/" + std::string(300, 'x') + "/caf\xC3\xA9\x1b.txt";
+  const std::string shown = dewall::io::file_name(long_name);
+  CHECK(shown.rfind("/a/xxx", 0) == 0);
+  CHECK(shown.find("xxx…xxx") != std::string::npos);
+  CHECK(shown.find("/caf\xC3\xA9\\x1b.txt (314 bytes)") != std::string::npos);
+  CHECK(shown.size() < 220);
+  std::string accents;
+  for (int i = 0; i < 150; ++i) accents += "\xC3\xA9";
+  CHECK(valid_utf8(dewall::io::file_name(accents)));  // cut between characters, never inside one
   CHECK(quoted("x") == "'x'");
   CHECK(json_string("a\"b\\c\n\xff") == "\"a\\\"b\\\\c\\u000a\\\\xff\"");
   CHECK(valid_utf8(json_string("\xff\xfe\xc3(\xE2\x80\xAE")));
