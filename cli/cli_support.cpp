@@ -162,14 +162,10 @@ std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_
 std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::file_name(path); }
 
 int report_invalid_input(const std::string& name, const Invalid_input& e, std::size_t first_index) {
-  std::string message = e.what();
-  if (const auto index = e.point_index(); index != Invalid_input::npos) {
-    // The library names the point zero-based in its message ("point 4 has …"):
-    // renumber it as the file counts rather than naming it twice.
-    const std::string library = "point " + std::to_string(index) + " ";
-    const std::string file = "point " + std::to_string(index + first_index);
-    message = message.rfind(library, 0) == 0 ? file + message.substr(library.size() - 1) : file + ": " + message;
-  }
+  // The point as the file numbers it (the library counts from 0).
+  const auto index = e.point_index();
+  const std::string message =
+      index == Invalid_input::npos ? e.what() : "point " + std::to_string(index + first_index) + " " + e.reason();
   std::fprintf(stderr, "dewall: %s: %s\n", name.c_str(), message.c_str());
   return 1;
 }

@@ -159,9 +159,7 @@ int command_draw(int argc, char** argv) {
   for (std::size_t i = 0; i < table.coordinates.size(); ++i)
     if (!std::isfinite(table.coordinates[i]))
       return report_invalid_input(input_name(points_path),
-                                  Invalid_input("point " + std::to_string(i / 2) +
-                                                    " has a non-finite coordinate (NaN or infinity)",
-                                                i / 2),
+                                  Invalid_input(i / 2, "has a non-finite coordinate (NaN or infinity)"),
                                   table.first_index);
 
   std::vector<Triangle> triangles;
