@@ -124,3 +124,40 @@ TEST_CASE("messages: help to a full device says why; a file size limit is a writ
       CHECK(entry.path().filename().string().find(".tmp.") == std::string::npos);
   }
 }
+
+TEST_CASE("messages: header integers are integers, an option is given once, counts read alike", "[cli][messages]") {
+  const auto cli = fresh("messages_test_strict");
+  SECTION("rbox's count and dimension, a .node header: decimal digits only") {
+    const auto count = cli.with_stdin("triangulate -", "2 rbox 4 D2\n4e0\n0 0\n1 0\n0 1\n1 1\n");
+    CHECK(count.status == 2);
+    CHECK(count.err.find("<stdin>:2: invalid point count '4e0'") != std::string::npos);
+    const auto dimension = cli.with_stdin("triangulate -", "0x2\n4\n0 0\n1 0\n0 1\n1 1\n");
+    CHECK(dimension.status == 2);
+    CHECK(dimension.err.find("<stdin>:1: invalid dimension '0x2'") != std::string::npos);
+    cli.write("h.node", "4e0 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n");
+    const auto node = cli("triangulate h.node");
+    CHECK(node.status == 2);
+    CHECK(node.err.find("h.node:1: expected a .node header") != std::string::npos);
+  }
+  SECTION("an option with a value given twice is a usage error") {
+    const auto engine = cli("triangulate p.txt --engine cgal --engine dewall");
+    CHECK(engine.status == 2);
+    CHECK(engine.out.empty());
+    CHECK(engine.err.find("dewall: option --engine given twice ('cgal' and 'dewall')") == 0);
+    const auto output = cli("triangulate p.txt -o a.txt --output b.txt");
+    CHECK(output.status == 2);
+    CHECK(output.err.find("option --output given twice ('a.txt' and 'b.txt')") != std::string::npos);
+    CHECK(!fs::exists(cli.path("a.txt")));
+    CHECK(!fs::exists(cli.path("b.txt")));
+    CHECK(cli("generate uniform 10 --seed 1 --seed 2").status == 2);
+    CHECK(cli("triangulate p.txt --stats --stats").status == 0);  // a flag repeated changes nothing
+  }
+  SECTION("demo reads --points and --seed as generate reads N and --seed") {
+    const auto demo = cli("demo --points 1e2 --dim 2 --seed 18446744073709551615");
+    CHECK(demo.status == 0);
+    CHECK(demo.out.find("dewall demo: 100 uniform points in E^2, seed 18446744073709551615") == 0);
+    const auto bad = cli("demo --points 2.5");
+    CHECK(bad.status == 2);
+    CHECK(bad.err.find("invalid point count '2.5'") != std::string::npos);
+  }
+}
