@@ -98,7 +98,10 @@ struct Pending_temporary {
 };
 std::array<Pending_temporary, 8> pending;
 std::mutex pending_mutex;  // claiming a slot; the handler only reads
-constexpr int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP};
+// Every signal whose default action ends the process and that comes from
+// outside (kill, a terminal, a timer or a limit), not from a fault of ours.
+constexpr int cleanup_signals[] = {SIGINT,  SIGTERM,   SIGHUP,  SIGQUIT, SIGALRM, SIGUSR1,
+                                   SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU, SIGPIPE};
 
 extern "C" void remove_temporaries_and_reraise(int signal_number) {
   for (auto& p : pending)

@@ -16,7 +16,9 @@
 //    group where the process may set them); hard links to the old file keep
 //    the old contents, since the name now points to a new file. A read-only
 //    target is refused, as the shell would. The temporary is removed on every
-//    error, on an exception, and on SIGINT, SIGTERM and SIGHUP.
+//    error, on an exception, and on a signal that ends the process from
+//    outside (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGALRM, SIGUSR1, SIGUSR2,
+//    SIGVTALRM, SIGPROF, SIGXCPU, SIGPIPE).
 //  * A symbolic link: followed to its final target (the temporary goes in that
 //    target's directory), so the link stays a link and the file it points to is
 //    replaced; a dangling link creates its target.
