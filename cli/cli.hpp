@@ -30,7 +30,8 @@ struct Usage_error : std::runtime_error {
 
 /// The value after option argv[i] (advancing i). \throws Usage_error when missing.
 std::string next_arg(int& i, int argc, char** argv);
-/// A non-negative integer argument. \throws Usage_error otherwise.
+/// A non-negative integer argument; `what` names it in the message ("--dim value"),
+/// which must say which option is wrong on its own. \throws Usage_error otherwise.
 long parse_long(const std::string& s, const char* what);
 /// A point count (generate N, demo --points N): an integer, also in the forms
 /// 1e6 or 2.5e5 (large counts are easier to type so) when the value is a

@@ -140,7 +140,7 @@ std::uint64_t parse_seed(const std::string& s) {
 }
 
 int parse_thread_count(const std::string& text) {
-  const long n = parse_long(text, "thread count");
+  const long n = parse_long(text, "--threads value");
   if (n < 1 || n > 4096) throw Usage_error("--threads must be 1 to 4096, not " + text);
   return static_cast<int>(n);
 }

@@ -21,7 +21,7 @@ int command_demo(int argc, char** argv) {
       argc, argv, 0,
       [&](const std::string& a, int& i) {
         if (a == "--points") n = parse_point_count(next_arg(i, argc, argv));
-        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "--dim value");
         else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv));
         else if (a == "--kind") {
           const std::string name = next_arg(i, argc, argv);

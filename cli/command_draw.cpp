@@ -137,7 +137,7 @@ int command_draw(int argc, char** argv) {
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--walls") walls = true;
-        else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "width");
+        else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "--width value");
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;

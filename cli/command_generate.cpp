@@ -39,10 +39,10 @@ int command_generate(int argc, char** argv) {
       argc, argv, 2,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
-        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "--dim value");
         else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
         else if (a == "--noise") shape.noise = parse_noise(next_arg(i, argc, argv));
-        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "plane count"), 1001L));
+        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "--planes value"), 1001L));
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;

@@ -45,7 +45,7 @@ int command_triangulate(int argc, char** argv) {
     throw Usage_error("unknown incremental engine " + io::quoted(incremental_engine) + " (auto, incremental or cgal)");
   if (threads) options.threads = parse_thread_count(*threads);
   if (region_points) {
-    const long n = parse_long(*region_points, "region size");
+    const long n = parse_long(*region_points, "--region-points value");
     if (n < 1 || n > 0xFFFFFFFFL) throw Usage_error("--region-points must be 1 to 4294967295, not " + *region_points);
     options.region_points = static_cast<std::size_t>(n);
   }
