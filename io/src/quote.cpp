@@ -91,7 +91,8 @@ std::string file_name(std::string_view path) {
     while (i < path.size() && (static_cast<unsigned char>(path[i]) & 0xc0) == 0x80);
     return i;
   };
-  std::size_t from = next_character(path.size() - kept - 1);
+  // (A short path may exceed the limit through its escapes alone: \xNN per byte.)
+  std::size_t from = path.size() > kept ? next_character(path.size() - kept - 1) : 0;
   std::string tail = printable(path.substr(from));
   while (tail.size() > kept) tail = printable(path.substr(from = next_character(from)));  // escapes lengthened it
   return head + "…" + tail + " (" + std::to_string(path.size()) + " bytes)";

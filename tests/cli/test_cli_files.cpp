@@ -568,6 +568,9 @@ TEST_CASE("quoting: printable, quoted and json_string", "[io][files]") {
   std::string accents;
   for (int i = 0; i < 150; ++i) accents += "\xC3\xA9";
   CHECK(valid_utf8(dewall::io::file_name(accents)));  // cut between characters, never inside one
+  const std::string controls(60, '\x01');  // 60 bytes, 240 once escaped
+  const std::string escaped24 = printable(controls.substr(36));  // 96 bytes
+  CHECK(dewall::io::file_name(controls) == escaped24 + "…" + escaped24 + " (60 bytes)");
   CHECK(quoted("x") == "'x'");
   CHECK(json_string("a\"b\\c\n\xff") == "\"a\\\"b\\\\c\\u000a\\\\xff\"");
   CHECK(valid_utf8(json_string("\xff\xfe\xc3(\xE2\x80\xAE")));
