@@ -2,9 +2,9 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
-#include <map>
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <span>
 #include <utility>
 #include <vector>

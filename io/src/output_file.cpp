@@ -263,6 +263,7 @@ struct Output_file::Impl {
       if (fd >= 0) break;
       const int error = errno;
       disarm_temporary(slot);
+      slot = -1;
       temporary.clear();
       if (error != EEXIST || attempt == 100)
         throw failure(name, "cannot create a temporary file in " + file_name(directory.empty() ? "." : directory), error);
@@ -279,11 +280,19 @@ struct Output_file::Impl {
     if (::fchmod(fd, mode) != 0) throw failure(name, "cannot set the mode of the temporary file", errno);
   }
 
+  // An uncommitted output is discarded however it ends: destroyed, or its
+  // constructor failing after the temporary was created (fchmod), or a probe.
+  ~Impl() {
+    if (!committed) discard();
+  }
+
   void discard() {
     if (owned && fd >= 0) ::close(fd);
     fd = -1;
     if (!temporary.empty()) ::unlink(temporary.c_str());
+    temporary.clear();
     disarm_temporary(slot);
+    slot = -1;
   }
 
   void finish_temporary() {
@@ -294,6 +303,7 @@ struct Output_file::Impl {
     if (::rename(temporary.c_str(), target.c_str()) != 0) throw failure(name, "cannot rename the temporary file", errno);
     temporary.clear();  // nothing to remove any more
     disarm_temporary(slot);
+    slot = -1;
     // The rename is durable once the directory is: some file systems cannot
     // fsync a directory (EINVAL), which then is the best one can do.
     const std::string directory = directory_of(target).empty() ? "." : directory_of(target);
@@ -329,13 +339,8 @@ Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>
   } else {
     m.name = output_name(path);
     const Target t = resolve_output(path, m.name);
-    try {
-      if (t.direct) m.open_direct(t);
-      else m.open_temporary(t);
-    } catch (...) {
-      m.discard();  // a temporary created before the failure (the destructor does not run)
-      throw;
-    }
+    if (t.direct) m.open_direct(t);
+    else m.open_temporary(t);
   }
   m.buffer.attach(m.fd);
   m.stream.rdbuf(&m.buffer);
@@ -346,15 +351,9 @@ void Output_file::probe(const std::string& path) {
   const std::string name = output_name(path);
   const Target t = resolve_output(path, name);
   if (!t.direct) {
-    Impl m;
+    Impl m;  // its destructor removes the temporary
     m.name = name;
-    try {
-      m.open_temporary(t);
-    } catch (...) {
-      m.discard();
-      throw;
-    }
-    m.discard();
+    m.open_temporary(t);
     return;
   }
   // Written in place, and not opened now: a FIFO's reader would take the
@@ -365,9 +364,7 @@ void Output_file::probe(const std::string& path) {
     throw failure(name, "cannot open", errno);
 }
 
-Output_file::~Output_file() {
-  if (!impl_->committed) impl_->discard();
-}
+Output_file::~Output_file() = default;
 
 std::ostream& Output_file::stream() { return impl_->stream; }
 const std::string& Output_file::name() const { return impl_->name; }
