@@ -3,6 +3,7 @@
 // table to the triangulator. One command per cli/command_<name>.cpp file.
 #pragma once
 
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <span>
@@ -22,15 +23,22 @@
 
 namespace dewall::cli {
 
-/// A usage error: printed with the usage text, exit status 2.
+/// A usage error: printed with where the help is (main.cpp), exit status 2.
 struct Usage_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
 /// The value after option argv[i] (advancing i). \throws Usage_error when missing.
 std::string next_arg(int& i, int argc, char** argv);
-/// A non-negative integer argument. \throws Usage_error otherwise.
+/// A non-negative integer argument; `what` names it in the message ("--dim value"),
+/// which must say which option is wrong on its own. \throws Usage_error otherwise.
 long parse_long(const std::string& s, const char* what);
+/// A point count (generate N, demo --points N): an integer, also in the forms
+/// 1e6 or 2.5e5 (large counts are easier to type so) when the value is a
+/// whole number, at most 10^12. \throws Usage_error otherwise.
+std::size_t parse_point_count(const std::string& s);
+/// A seed: an integer from 0 to 2^64 - 1. \throws Usage_error otherwise.
+std::uint64_t parse_seed(const std::string& s);
 /// --threads N: 1 to 4096. \throws Usage_error otherwise.
 int parse_thread_count(const std::string& text);
 
@@ -43,7 +51,8 @@ bool is_option(const std::string& a);
 /// goes to `option(argument, i)`, which returns false for an option it does
 /// not know (a Usage_error then names it) and may consume a value with
 /// next_arg; every other argument, and every argument after "--", is an
-/// operand. \throws Usage_error ("unexpected argument") past `max_operands`.
+/// operand. \throws Usage_error ("unexpected argument") past `max_operands`,
+/// and for an option that takes a value given twice (-o and --output are one).
 std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
                                          const std::function<bool(const std::string&, int&)>& option);
 

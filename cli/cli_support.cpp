@@ -2,6 +2,9 @@
 #include <cctype>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <map>
 #include <span>
 #include <utility>
 #include <vector>
@@ -117,8 +120,27 @@ bool register_command(const Command& c) {
 
 const std::vector<Command>& commands() { return registry(); }
 
+std::size_t parse_point_count(const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0) || v != std::floor(v) || v > 1e12 ||
+      s.find_first_of("xXpP") != std::string::npos)  // no hexadecimal
+    throw Usage_error("invalid point count " + io::quoted(s) + " (a whole number such as 1000 or 1e6)");
+  return static_cast<std::size_t>(v);
+}
+
+std::uint64_t parse_seed(const std::string& s) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
+  if (s.empty() || *end != '\0' || errno == ERANGE || s[0] == '-' || s[0] == '+')
+    throw Usage_error("invalid seed " + io::quoted(s) + " (an integer from 0 to 2^64 - 1)");
+  return v;
+}
+
 int parse_thread_count(const std::string& text) {
-  const long n = parse_long(text, "thread count");
+  const long n = parse_long(text, "--threads value");
   if (n < 1 || n > 4096) throw Usage_error("--threads must be 1 to 4096, not " + text);
   return static_cast<int>(n);
 }
@@ -144,12 +166,20 @@ bool is_option(const std::string& a) {
 std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_operands,
                                          const std::function<bool(const std::string&, int&)>& option) {
   std::vector<std::string> operands;
+  // An option with a value given twice is refused rather than the last one
+  // silently winning ("--engine cgal ... --engine dewall"); -o is --output.
+  std::map<std::string, std::string> values;
+  const auto long_name = [](const std::string& a) { return a == "-o" ? std::string("--output") : a; };
   bool options_ended = false;
   for (int i = 2; i < argc; ++i) {
     const std::string a = argv[i];
     if (!options_ended && is_option(a)) {
+      const int at = i;
       if (a == "--") options_ended = true;
       else if (!option(a, i)) throw Usage_error("unknown option " + io::quoted(a));
+      else if (i != at && !values.emplace(long_name(a), argv[i]).second)
+        throw Usage_error("option " + long_name(a) + " given twice (" + io::quoted(values[long_name(a)]) + " and " +
+                          io::quoted(argv[i]) + ")");
     } else if (operands.size() == max_operands) {
       throw Usage_error("unexpected argument " + io::quoted(a));
     } else {
@@ -159,17 +189,13 @@ std::vector<std::string> parse_arguments(int argc, char** argv, std::size_t max_
   return operands;
 }
 
-std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::printable(path); }
+std::string input_name(const std::string& path) { return path == "-" ? std::string("<stdin>") : io::file_name(path); }
 
 int report_invalid_input(const std::string& name, const Invalid_input& e, std::size_t first_index) {
-  std::string message = e.what();
-  if (const auto index = e.point_index(); index != Invalid_input::npos) {
-    // The library names the point zero-based in its message ("point 4 has …"):
-    // renumber it as the file counts rather than naming it twice.
-    const std::string library = "point " + std::to_string(index) + " ";
-    const std::string file = "point " + std::to_string(index + first_index);
-    message = message.rfind(library, 0) == 0 ? file + message.substr(library.size() - 1) : file + ": " + message;
-  }
+  // The point as the file numbers it (the library counts from 0).
+  const auto index = e.point_index();
+  const std::string message =
+      index == Invalid_input::npos ? e.what() : "point " + std::to_string(index + first_index) + " " + e.reason();
   std::fprintf(stderr, "dewall: %s: %s\n", name.c_str(), message.c_str());
   return 1;
 }

@@ -13,15 +13,16 @@
 namespace dewall::cli {
 
 int command_demo(int argc, char** argv) {
-  long n = 100000, dim = 3;
+  std::size_t n = 100000;
+  long dim = 3;
   io::Point_kind kind = io::Point_kind::uniform;
-  unsigned long long seed = std::random_device{}();
+  std::uint64_t seed = std::random_device{}();
   parse_arguments(
       argc, argv, 0,
       [&](const std::string& a, int& i) {
-        if (a == "--points") n = parse_long(next_arg(i, argc, argv), "point count");
-        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
-        else if (a == "--seed") seed = static_cast<unsigned long long>(parse_long(next_arg(i, argc, argv), "seed"));
+        if (a == "--points") n = parse_point_count(next_arg(i, argc, argv));
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "--dim value");
+        else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv));
         else if (a == "--kind") {
           const std::string name = next_arg(i, argc, argv);
           const auto k = io::parse_point_kind(name);
@@ -31,9 +32,10 @@ int command_demo(int argc, char** argv) {
         return true;
       });
   if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
-  check_fits_in_memory(static_cast<std::size_t>(n), dim);
-  std::printf("dewall demo: %ld %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim, seed);
-  io::Point_table table = io::generate_points(kind, static_cast<std::size_t>(n), static_cast<int>(dim), seed);
+  check_fits_in_memory(n, dim);
+  std::printf("dewall demo: %zu %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim,
+              static_cast<unsigned long long>(seed));
+  io::Point_table table = io::generate_points(kind, n, static_cast<int>(dim), seed);
   Run run;
   try {
     run = triangulate_any(table);

@@ -137,7 +137,7 @@ int command_draw(int argc, char** argv) {
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
         else if (a == "--walls") walls = true;
-        else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "width");
+        else if (a == "--width") width = parse_long(next_arg(i, argc, argv), "--width value");
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -149,6 +149,7 @@ int command_draw(int argc, char** argv) {
   if (points_path == "-" && simplices_path == "-" && !walls)
     throw Usage_error("POINTS and SIMPLICES cannot both be standard input");
 
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
   if (table.dimension != 2)
@@ -158,9 +159,7 @@ int command_draw(int argc, char** argv) {
   for (std::size_t i = 0; i < table.coordinates.size(); ++i)
     if (!std::isfinite(table.coordinates[i]))
       return report_invalid_input(input_name(points_path),
-                                  Invalid_input("point " + std::to_string(i / 2) +
-                                                    " has a non-finite coordinate (NaN or infinity)",
-                                                i / 2),
+                                  Invalid_input(i / 2, "has a non-finite coordinate (NaN or infinity)"),
                                   table.first_index);
 
   std::vector<Triangle> triangles;
@@ -198,7 +197,7 @@ int command_draw(int argc, char** argv) {
   } else {
     triangles = read_triangles(simplices_path, table);
   }
-  if (output != "-") progress.phase("writing " + io::printable(output));  // no progress line inside the SVG on a terminal
+  if (output != "-") progress.phase("writing " + io::file_name(output));  // no progress line inside the SVG on a terminal
   io::write_output_file(output, [&](std::ostream& out) {
     write_svg(out, table, triangles, levels, static_cast<int>(width), walls);
   });

@@ -9,33 +9,13 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
 
 namespace dewall::cli {
 namespace {
-
-/// A point count: an integer, also in the forms 1e6 or 2.5e5 (large counts are
-/// easier to type so), as long as the value is a whole number.
-std::size_t parse_count(const std::string& s) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0) || v != std::floor(v) || v > 1e12 ||
-      s.find_first_of("xXpP") != std::string::npos)  // no hexadecimal
-    throw Usage_error("invalid point count " + io::quoted(s) + " (a whole number such as 1000 or 1e6)");
-  return static_cast<std::size_t>(v);
-}
-
-std::uint64_t parse_seed(const std::string& s) {
-  char* end = nullptr;
-  errno = 0;
-  const unsigned long long v = std::strtoull(s.c_str(), &end, 10);
-  if (s.empty() || *end != '\0' || errno == ERANGE || s[0] == '-' || s[0] == '+')
-    throw Usage_error("invalid seed " + io::quoted(s) + " (an integer from 0 to 2^64 - 1)");
-  return v;
-}
 
 /// The relative noise of --noise: a finite number in [0, 1].
 double parse_noise(const std::string& s) {
@@ -59,10 +39,10 @@ int command_generate(int argc, char** argv) {
       argc, argv, 2,
       [&](const std::string& a, int& i) {
         if (a == "-o" || a == "--output") output = next_arg(i, argc, argv);
-        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "dimension");
+        else if (a == "--dim") dim = parse_long(next_arg(i, argc, argv), "--dim value");
         else if (a == "--seed") seed = parse_seed(next_arg(i, argc, argv)), seeded = true;
         else if (a == "--noise") shape.noise = parse_noise(next_arg(i, argc, argv));
-        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "plane count"), 1001L));
+        else if (a == "--planes") shape.planes = static_cast<int>(std::min(parse_long(next_arg(i, argc, argv), "--planes value"), 1001L));
         else if (a == "--quiet" || a == "-q") quiet = true;
         else return false;
         return true;
@@ -70,7 +50,7 @@ int command_generate(int argc, char** argv) {
   if (operands.size() != 2) throw Usage_error("generate needs a KIND and a point count N");
   const auto kind = io::parse_point_kind(operands[0]);
   if (!kind) throw Usage_error("unknown kind " + io::quoted(operands[0]) + " (one of " + io::point_kind_names() + ")");
-  const std::size_t n = parse_count(operands[1]);
+  const std::size_t n = parse_point_count(operands[1]);
   if (shape.noise != 0 && *kind != io::Point_kind::sphere && *kind != io::Point_kind::torus)
     throw Usage_error(std::string("--noise applies to sphere and torus only, not ") + io::point_kind_name(*kind));
   if (shape.planes != 0 && *kind != io::Point_kind::planes)
@@ -81,6 +61,7 @@ int command_generate(int argc, char** argv) {
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   if (!seeded) {
     // Two draws: random_device yields 32 bits on common platforms.
     std::random_device device;

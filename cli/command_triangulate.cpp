@@ -5,6 +5,7 @@
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
+#include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
 #include "dewall/io/vtk.hpp"
@@ -44,7 +45,7 @@ int command_triangulate(int argc, char** argv) {
     throw Usage_error("unknown incremental engine " + io::quoted(incremental_engine) + " (auto, incremental or cgal)");
   if (threads) options.threads = parse_thread_count(*threads);
   if (region_points) {
-    const long n = parse_long(*region_points, "region size");
+    const long n = parse_long(*region_points, "--region-points value");
     if (n < 1 || n > 0xFFFFFFFFL) throw Usage_error("--region-points must be 1 to 4294967295, not " + *region_points);
     options.region_points = static_cast<std::size_t>(n);
   }
@@ -52,11 +53,12 @@ int command_triangulate(int argc, char** argv) {
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
                       " (.ele and .vtk files start with the count of simplices)");
   options.stream = stream;
+  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
   io::Progress progress(!quiet && io::stderr_is_terminal());
   auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
   if (io::is_vtk_path(output) && table.dimension > 3)
-    throw io::Vtk_unsupported(io::printable(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
+    throw io::Vtk_unsupported(io::file_name(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
                               " holds points of dimension " + std::to_string(table.dimension) +
                               " (write a plain simplex list instead)");
   Run run;

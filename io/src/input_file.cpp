@@ -104,7 +104,7 @@ Input_file::Input_file(const std::string& path) : impl_(std::make_unique<Impl>()
     m.fd = STDIN_FILENO;
     m.owned = false;
   } else {
-    m.name = printable(path);
+    m.name = file_name(path);
     m.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
     if (m.fd < 0) throw Parse_error(m.name + ": cannot open file: " + std::strerror(errno));
   }

@@ -25,7 +25,8 @@ namespace dewall::io {
 namespace {
 
 Write_error failure(const std::string& name, const std::string& what, int error) {
-  return Write_error(name + ": " + what + ": " + std::strerror(error));
+  // EFBIG: the process's file size limit (the CLI ignores SIGXFSZ to get here).
+  return Write_error(name + ": " + what + ": " + std::strerror(error) + (error == EFBIG ? " (a file size limit: ulimit -f)" : ""));
 }
 
 /// A stream buffer writing to a file descriptor with write(2). The first error
@@ -97,7 +98,10 @@ struct Pending_temporary {
 };
 std::array<Pending_temporary, 8> pending;
 std::mutex pending_mutex;  // claiming a slot; the handler only reads
-constexpr int cleanup_signals[] = {SIGINT, SIGTERM, SIGHUP};
+// Every signal whose default action ends the process and that comes from
+// outside (kill, a terminal, a timer or a limit), not from a fault of ours.
+constexpr int cleanup_signals[] = {SIGINT,  SIGTERM,   SIGHUP,  SIGQUIT, SIGALRM, SIGUSR1,
+                                   SIGUSR2, SIGVTALRM, SIGPROF, SIGXCPU, SIGPIPE};
 
 extern "C" void remove_temporaries_and_reraise(int signal_number) {
   for (auto& p : pending)
@@ -259,9 +263,10 @@ struct Output_file::Impl {
       if (fd >= 0) break;
       const int error = errno;
       disarm_temporary(slot);
+      slot = -1;
       temporary.clear();
       if (error != EEXIST || attempt == 100)
-        throw failure(name, "cannot create a temporary file in " + printable(directory.empty() ? "." : directory), error);
+        throw failure(name, "cannot create a temporary file in " + file_name(directory.empty() ? "." : directory), error);
     }
     // Created with mode 0600: give the file the old file's mode (and owner
     // where permitted), or what a new file gets under the umask.
@@ -275,11 +280,19 @@ struct Output_file::Impl {
     if (::fchmod(fd, mode) != 0) throw failure(name, "cannot set the mode of the temporary file", errno);
   }
 
+  // An uncommitted output is discarded however it ends: destroyed, or its
+  // constructor failing after the temporary was created (fchmod), or a probe.
+  ~Impl() {
+    if (!committed) discard();
+  }
+
   void discard() {
     if (owned && fd >= 0) ::close(fd);
     fd = -1;
     if (!temporary.empty()) ::unlink(temporary.c_str());
+    temporary.clear();
     disarm_temporary(slot);
+    slot = -1;
   }
 
   void finish_temporary() {
@@ -290,6 +303,7 @@ struct Output_file::Impl {
     if (::rename(temporary.c_str(), target.c_str()) != 0) throw failure(name, "cannot rename the temporary file", errno);
     temporary.clear();  // nothing to remove any more
     disarm_temporary(slot);
+    slot = -1;
     // The rename is durable once the directory is: some file systems cannot
     // fsync a directory (EINVAL), which then is the best one can do.
     const std::string directory = directory_of(target).empty() ? "." : directory_of(target);
@@ -302,6 +316,19 @@ struct Output_file::Impl {
   }
 };
 
+namespace {
+
+/// How messages name an output path; the empty name as ''.
+std::string output_name(const std::string& path) { return path.empty() ? std::string("''") : file_name(path); }
+
+/// resolve(), and the empty name refused as the shell refuses `> ''`.
+Target resolve_output(const std::string& path, const std::string& name) {
+  if (path.empty()) throw failure(name, "cannot open", ENOENT);
+  return resolve(path, name);
+}
+
+}  // namespace
+
 Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>()) {
   auto& m = *impl_;
   if (path == "-") {
@@ -310,8 +337,8 @@ Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>
     m.fd = STDOUT_FILENO;
     m.owned = false;
   } else {
-    m.name = printable(path);
-    const Target t = resolve(path, m.name);
+    m.name = output_name(path);
+    const Target t = resolve_output(path, m.name);
     if (t.direct) m.open_direct(t);
     else m.open_temporary(t);
   }
@@ -319,9 +346,25 @@ Output_file::Output_file(const std::string& path) : impl_(std::make_unique<Impl>
   m.stream.rdbuf(&m.buffer);
 }
 
-Output_file::~Output_file() {
-  if (!impl_->committed) impl_->discard();
+void Output_file::probe(const std::string& path) {
+  if (path == "-") return;
+  const std::string name = output_name(path);
+  const Target t = resolve_output(path, name);
+  if (!t.direct) {
+    Impl m;  // its destructor removes the temporary
+    m.name = name;
+    m.open_temporary(t);
+    return;
+  }
+  // Written in place, and not opened now: a FIFO's reader would take the
+  // probe's close for the end of the output. What can be told without opening:
+  if (!t.exists) return;
+  if (S_ISDIR(t.status.st_mode)) throw failure(name, "cannot open", EISDIR);
+  if (!S_ISSOCK(t.status.st_mode) && ::faccessat(AT_FDCWD, t.path.c_str(), W_OK, AT_EACCESS) != 0)
+    throw failure(name, "cannot open", errno);
 }
+
+Output_file::~Output_file() = default;
 
 std::ostream& Output_file::stream() { return impl_->stream; }
 const std::string& Output_file::name() const { return impl_->name; }

@@ -30,6 +30,14 @@ std::vector<double> parse_numbers(std::string_view line, const std::string& name
 
 bool is_count(double v) { return v >= 0 && v == std::floor(v) && v < 1e15; }
 
+/// True when a header's integer (rbox's dimension and count, a .node header
+/// value) is written as one: decimal digits only, as rbox and TetGen write
+/// them, not "4e0" or "0x2", which strtod would take.
+bool is_integer_token(std::string_view token) {
+  return !token.empty() && token.size() <= 15 &&
+         std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 /// \throws Parse_error unless `d` is a whole number from 2 to 6; `shown` is how
 /// the message writes it.
 void check_dimension(double d, std::string_view shown, const std::string& name, std::size_t line_no) {
@@ -49,13 +57,15 @@ bool next_data_line(detail::Line_source& source, std::string& line, Progress* pr
 
 /// True when the first data line starts rbox's header rather than a point: a
 /// lone number (no point has one coordinate), or a number followed by rbox's
-/// command line ("3 rbox 1000 D3", without '#') when the next line is a lone count.
+/// command line ("3 rbox 1000 D3", without '#'), recognised by its word "rbox"
+/// or, without it, when the next line is a lone count.
 bool is_rbox_header(const std::vector<std::string_view>& first, std::string_view second) {
   if (first.empty() || !detail::is_number(first[0])) return false;
   if (first.size() == 1) return true;
+  if (detail::is_number(first[1])) return false;
   std::size_t second_tokens = 0;
   detail::for_each_token(detail::without_comment(second), [&](std::string_view) { ++second_tokens; });
-  return !detail::is_number(first[1]) && second_tokens == 1;
+  return first[1] == "rbox" || second_tokens == 1;
 }
 
 std::vector<std::string_view> tokens_of(std::string_view line) {
@@ -78,19 +88,29 @@ Point_table read_points(std::istream& in, const std::string& name, Progress* pro
   std::optional<std::size_t> expected_count;  // rbox's
   if (is_rbox_header(first, have_second ? second : std::string_view())) {
     // rbox: a dimension (maybe followed by rbox's command line), a lone count, then the rows.
+    if (!is_integer_token(first[0]))
+      throw Parse_error(where(name, line_no) + "invalid dimension " + quoted(first[0]) + " (a whole number, 2 to 6)");
     const double dimension = detail::parse_double(first[0], name, line_no);
-    check_dimension(dimension, printable(first[0], 40), name, line_no);
+    check_dimension(dimension, first[0], name, line_no);
     t.dimension = static_cast<int>(dimension);
     if (!have_second)
       throw Parse_error(where(name, line_no) + "a lone dimension without rbox's count line (and no points)");
-    const auto count = parse_numbers(second, name, second_no);
-    if (count.size() != 1)
-      throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line");
-    if (!is_count(count[0]))
-      throw Parse_error(where(name, second_no) + "invalid point count " + quoted(tokens_of(second)[0]) +
+    const auto count_tokens = tokens_of(second);
+    if (count_tokens.size() != 1)
+      throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line, found " +
+                        quoted(detail::without_comment(second)));
+    const double count = detail::parse_double(count_tokens[0], name, second_no);
+    if (!is_count(count) || !is_integer_token(count_tokens[0]))
+      throw Parse_error(where(name, second_no) + "invalid point count " + quoted(count_tokens[0]) +
                         " (a non-negative integer)");
-    expected_count = static_cast<std::size_t>(count[0]);
+    expected_count = static_cast<std::size_t>(count);
     if (!next_data_line(source, line, progress)) line.clear();
+    // One number per line for three lines: not rbox, but a single column,
+    // which no point set is (without this, "expected 5 coordinates, found 1").
+    if (first.size() == 1 && !line.empty() && tokens_of(line).size() == 1)
+      throw Parse_error(where(name, source.number()) + "one value per line: points need 2 to 6 coordinates per line " +
+                        "(read as rbox's format, lines " + std::to_string(line_no) + " and " + std::to_string(second_no) +
+                        " would be the dimension and the point count)");
   } else {
     const auto values = parse_numbers(line, name, line_no);
     check_dimension(static_cast<double>(values.size()), std::to_string(values.size()), name, line_no);
@@ -131,7 +151,10 @@ Point_table read_node(std::istream& in, const std::string& name, Progress* progr
   const std::size_t header_line = std::max<std::size_t>(source.number(), 1);
   // Every header value is checked to be a count before it is converted: a
   // double outside the target type's range has no defined conversion (fuzz_parse).
-  if (header.size() < 2 || !std::all_of(header.begin(), header.begin() + std::min<std::size_t>(header.size(), 4), is_count))
+  const auto header_tokens = tokens_of(line);
+  const std::size_t integers = std::min<std::size_t>(header.size(), 4);
+  if (header.size() < 2 || !std::all_of(header.begin(), header.begin() + integers, is_count) ||
+      !std::all_of(header_tokens.begin(), header_tokens.begin() + integers, is_integer_token))
     throw Parse_error(where(name, header_line) + "expected a .node header '<count> <dimension> <#attributes> <markers>'");
   const auto count = static_cast<std::size_t>(header[0]);
   check_dimension(header[1], printable(tokens_of(line)[1], 40), name, header_line);

@@ -31,10 +31,15 @@ Character decode(std::string_view s, std::size_t i) {
 }
 
 /// Characters a terminal may obey instead of printing: C0, DEL, C1, and the
-/// bidirectional embeddings and isolates that reorder what follows them.
+/// bidirectional embeddings and isolates that reorder what follows them; and
+/// characters that print as nothing, so that a message would show a token
+/// as another one: the byte order mark U+FEFF (a second one in a file is data),
+/// zero-width spaces and joiners, the directional marks, the line and
+/// paragraph separators and the invisible operators.
 bool is_control(std::int32_t code) {
   return code < 0x20 || (code >= 0x7f && code <= 0x9f) || (code >= 0x202a && code <= 0x202e) ||
-         (code >= 0x2066 && code <= 0x2069);
+         (code >= 0x2066 && code <= 0x2069) || code == 0xfeff || code == 0x061c || (code >= 0x200b && code <= 0x200f) ||
+         code == 0x2028 || code == 0x2029 || (code >= 0x2060 && code <= 0x2064);
 }
 
 std::string hex_escape(std::string_view bytes, const char* form) {
@@ -71,6 +76,26 @@ std::string printable(std::string_view s, std::size_t max_bytes) {
     i += length;
   }
   return out;
+}
+
+std::string file_name(std::string_view path) {
+  constexpr std::size_t longest = 200, kept = 96;
+  std::string whole = printable(path, longest);
+  if (whole.size() <= longest) return whole;
+  // The start says where, the end which file: keep both, each cut at a
+  // character boundary (never inside a UTF-8 sequence or an escape).
+  std::string head = printable(path, kept);
+  head.resize(head.rfind("… ("));
+  const auto next_character = [&](std::size_t i) {
+    do ++i;
+    while (i < path.size() && (static_cast<unsigned char>(path[i]) & 0xc0) == 0x80);
+    return i;
+  };
+  // (A short path may exceed the limit through its escapes alone: \xNN per byte.)
+  std::size_t from = path.size() > kept ? next_character(path.size() - kept - 1) : 0;
+  std::string tail = printable(path.substr(from));
+  while (tail.size() > kept) tail = printable(path.substr(from = next_character(from)));  // escapes lengthened it
+  return head + "…" + tail + " (" + std::to_string(path.size()) + " bytes)";
 }
 
 std::string quoted(std::string_view s) {

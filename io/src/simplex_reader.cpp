@@ -79,6 +79,9 @@ Simplex_list read_simplices(std::istream& in, const std::string& name, int dimen
     }
     add_row(list, v, 0, 0, name, line_no);
   }
+  if (list.format == "qhull" && list.table.size() > expected)
+    throw Parse_error(where(name, list.lines[expected]) + "more rows than the header announces (" +
+                      std::to_string(expected) + " facets)");
   if (list.format == "qhull" && list.table.size() != expected)
     throw Parse_error(name + ": the Qhull header announces " + std::to_string(expected) + " facets, the file has " +
                       std::to_string(list.table.size()) + " (truncated?)");

@@ -32,7 +32,7 @@ Progress* unless_terminal_output(const std::string& path, Progress* progress) {
 }
 
 /// How messages name an output path.
-std::string shown(const std::string& path) { return path == "-" ? std::string("<stdout>") : printable(path); }
+std::string shown(const std::string& path) { return path == "-" ? std::string("<stdout>") : file_name(path); }
 
 }  // namespace
 

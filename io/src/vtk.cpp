@@ -11,6 +11,7 @@
 #include <cstring>
 #include <string>
 #include <istream>
+#include <iterator>
 #include <ostream>
 #include <vector>
 
@@ -175,6 +176,44 @@ void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, 
   }
 }
 
+/// True when `token` is a keyword that may start the section after POINTS in
+/// a legacy file (VTK's "File Formats": the dataset's cells, then its
+/// attributes), in any case, as VTK's reader compares them.
+bool is_section_keyword(const std::string& token) {
+  static constexpr const char* keywords[] = {"cells",           "cell_types", "vertices",  "lines", "polygons",
+                                             "triangle_strips", "point_data", "cell_data", "field", "metadata"};
+  const std::string t = lower(token);
+  return std::any_of(std::begin(keywords), std::end(keywords), [&](const char* k) { return t == k; });
+}
+
+/// "N points (M coordinates)", what a POINTS header announces.
+std::string announced(unsigned long long count) {
+  return std::to_string(count) + " points (" + std::to_string(count * 3) + " coordinates)";
+}
+
+/// After the binary data of the POINTS section: blanks, then the end of the
+/// file or the next section's keyword. Binary data carries no separators, so
+/// this is where a wrong count shows: with fewer points announced than stored
+/// the next bytes are coordinates; with more, the reading ran on into the next
+/// section and stops in its middle (or at the end of the file: truncated).
+void expect_end_of_binary_points(std::istream& in, const std::string& name, std::size_t points_line,
+                                 unsigned long long count) {
+  using traits = std::char_traits<char>;
+  auto c = in.peek();
+  while (c != traits::eof() && std::isspace(c)) {
+    in.get();
+    c = in.peek();
+  }
+  if (c == traits::eof()) return;
+  std::string token;
+  while (token.size() < 32 && (c = in.peek()) != traits::eof() && !std::isspace(c)) token += static_cast<char>(in.get());
+  if (is_section_keyword(token)) return;
+  // (The bytes found are binary: not quoted.)
+  throw Parse_error(where(name, points_line) + "count mismatch: the POINTS section announces " + announced(count) +
+                    ", but its binary data is followed by neither the end of the file nor a section keyword "
+                    "(CELLS, POINT_DATA, …): the file holds more or fewer points than announced");
+}
+
 }  // namespace
 
 bool is_vtk_header(const std::string& first_line) {
@@ -249,6 +288,7 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
     if (type == "double") read_big_endian<double>(in, n, xyz, name, count);
     else if (type == "float") read_big_endian<float>(in, n, xyz, name, count);
     else throw Parse_error(where(name, line_no) + "binary POINTS of type " + quoted(tokens[2]) + " are not supported (float, double)");
+    expect_end_of_binary_points(in, name, points_line, count);
   } else {
     xyz.reserve(std::min<std::size_t>(n, std::size_t{1} << 16));  // not trusting the count (f2e10cdf)
     // The section ends with its last coordinate: more on that line, or a
@@ -257,9 +297,16 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
       return Parse_error(where(name, line_no) + "more coordinates than the POINTS header announces (" +
                          std::to_string(count) + " points)");
     };
+    // A section keyword before the last coordinate: fewer points than announced.
+    const auto too_few = [&](const std::string& keyword) {
+      return Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + announced(count) +
+                         ", the file has " + std::to_string(xyz.size()) + " before " + quoted(keyword) + " on line " +
+                         std::to_string(line_no));
+    };
     while (xyz.size() < n && next_line()) {
       for (const auto& token : split(line)) {
         if (xyz.size() == n) throw too_many();
+        if (is_section_keyword(token)) throw too_few(token);
         xyz.push_back(detail::parse_double(token, name, line_no));
       }
     }
@@ -269,9 +316,8 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
       if (more && detail::is_number(split(line).front())) throw too_many();
     }
     if (xyz.size() != n)
-      throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + std::to_string(count) +
-                        " points (" + std::to_string(n) + " coordinates), the file has " +
-                        std::to_string(xyz.size()));
+      throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + announced(count) +
+                        ", the file has " + std::to_string(xyz.size()));
   }
 
   // VTK has no 2D point type: a plane drawing stores z = 0. A 3D set with every

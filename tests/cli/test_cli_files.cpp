@@ -20,6 +20,7 @@
 
 #include <fcntl.h>
 #include <poll.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
@@ -194,9 +195,11 @@ TEST_CASE("files: a regular file keeps its mode, a hard link keeps the old conte
 
 namespace {
 
-/// Starts `dewall args…` in `dir` with default signal dispositions, waits for
-/// its temporary (a name starting with ".OUTPUT.tmp.") to appear, sends
-/// `signal_number`, and returns the wait status (or -1 when the temporary never appeared).
+/// Starts `dewall args…` in `dir` with default signal dispositions (and no
+/// core dump), waits for its temporary (a name starting with ".OUTPUT.tmp.")
+/// to receive data (the empty one of the check before the work does not
+/// count), sends `signal_number`, and returns the wait status (or -1 when the
+/// temporary never appeared).
 int interrupt_while_writing(const std::string& dir, const std::string& output, std::vector<std::string> args,
                             int signal_number) {
   const pid_t pid = ::fork();
@@ -204,7 +207,9 @@ int interrupt_while_writing(const std::string& dir, const std::string& output, s
     sigset_t none;
     sigemptyset(&none);
     ::sigprocmask(SIG_SETMASK, &none, nullptr);
-    for (int s : {SIGINT, SIGTERM, SIGHUP}) ::signal(s, SIG_DFL);
+    for (int s : {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1}) ::signal(s, SIG_DFL);
+    const rlimit no_core{0, 0};
+    ::setrlimit(RLIMIT_CORE, &no_core);
     if (::chdir(dir.c_str()) != 0) ::_exit(127);
     std::vector<char*> argv{const_cast<char*>(DEWALL_CLI_PATH)};
     for (auto& a : args) argv.push_back(a.data());
@@ -214,8 +219,11 @@ int interrupt_while_writing(const std::string& dir, const std::string& output, s
   }
   bool seen = false;
   for (int tries = 0; tries < 30000 && !seen; ++tries) {
-    for (const auto& entry : fs::directory_iterator(dir))
-      seen = seen || entry.path().filename().string().rfind("." + output + ".tmp.", 0) == 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+      std::error_code gone;  // (the temporary may vanish between the listing and its size)
+      seen = seen || (entry.path().filename().string().rfind("." + output + ".tmp.", 0) == 0 &&
+                      fs::file_size(entry.path(), gone) > 0 && !gone);
+    }
     if (!seen) std::this_thread::sleep_for(std::chrono::microseconds(500));
   }
   ::kill(pid, signal_number);
@@ -226,18 +234,19 @@ int interrupt_while_writing(const std::string& dir, const std::string& output, s
 
 }  // namespace
 
-TEST_CASE("files: SIGINT, SIGTERM and SIGHUP during writing leave nothing behind", "[cli][files][signals]") {
+TEST_CASE("files: SIGINT, SIGTERM, SIGHUP, SIGQUIT and SIGUSR1 during writing leave nothing behind", "[cli][files][signals]") {
   const auto cli = fresh("files_test_signals");
   const std::string dir = cli.dir;
-  // Outputs of about 200 MB: writing and fsync take long enough to be interrupted.
+  // Outputs of about 100 to 200 MB: writing and fsync take long enough to be interrupted.
   const struct {
     int signal_number;
-    std::string output;
-  } cases[] = {{SIGINT, "big.txt"}, {SIGTERM, "big.vtk"}, {SIGHUP, "big.txt"}};
+    std::string output, points;
+  } cases[] = {{SIGINT, "big.txt", "2e6"}, {SIGTERM, "big.vtk", "4e6"}, {SIGHUP, "big.txt", "2e6"},
+               {SIGQUIT, "big.txt", "1e6"}, {SIGUSR1, "big.txt", "1e6"}};  // (SIGQUIT, SIGUSR1: issue 27)
   for (const auto& c : cases) {
     CAPTURE(c.signal_number, c.output);
     const int status = interrupt_while_writing(
-        dir, c.output, {"generate", "uniform", c.output == "big.vtk" ? "4e6" : "2e6", "--dim", c.output == "big.vtk" ? "3" : "6", "--seed", "1", "-q", "-o", c.output},
+        dir, c.output, {"generate", "uniform", c.points, "--dim", c.output == "big.vtk" ? "3" : "6", "--seed", "1", "-q", "-o", c.output},
         c.signal_number);
     REQUIRE(status != -1);
     CHECK(WIFSIGNALED(status));
@@ -337,7 +346,7 @@ TEST_CASE("files: hostile tokens are escaped and cut in messages, a BOM is skipp
   }
 }
 
-TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbox, .ele)", "[cli][files]") {
+TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbox, .ele, Qhull)", "[cli][files]") {
   const auto cli = fresh("files_test_rows");
   cli.write("x.node", "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n4 2 2\n");
   cli.write("ok.node", "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n# end\n\n");
@@ -361,6 +370,73 @@ TEST_CASE("files: more rows than the header announces is exit 2 (.node, VTK, rbo
   const auto ele = cli("certify p.txt x.ele");
   CHECK(ele.status == 2);
   CHECK(ele.err.find("x.ele:4: more rows than the header announces (2 simplices)") != std::string::npos);
+  cli.write("x.qh", "2\n0 1 2\n1 3 2\n0 1 3\n");  // qdelaunay i: a count, then the facets
+  const auto qhull = cli("certify p.txt x.qh");
+  CHECK(qhull.status == 2);
+  CHECK(qhull.err.find("x.qh:4: more rows than the header announces (2 facets)") != std::string::npos);
+}
+
+TEST_CASE("files: a VTK POINTS count that does not match its data is exit 2 (binary and ASCII)", "[cli][files]") {
+  const auto cli = fresh("files_test_vtk_count");
+  REQUIRE(cli("generate uniform 50 --dim 3 --seed 1 -o b.vtk").status == 0);  // binary, with a CELLS section
+  const std::string file = slurp(cli.path("b.vtk"));
+  const auto at = file.find("POINTS 50 double");
+  REQUIRE(at != std::string::npos);
+  CHECK(cli("triangulate b.vtk").status == 0);
+  // 60 used to read 10 "points" out of the CELLS section, 40 to ignore the last ten: exit 0 both.
+  for (const std::string count : {"60", "40"}) {
+    CAPTURE(count);
+    std::string changed = file;
+    changed.replace(at + 7, 2, count);
+    cli.write("c.vtk", changed);
+    const auto r = cli("triangulate c.vtk");
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find("c.vtk:5: count mismatch: the POINTS section announces " + count + " points") != std::string::npos);
+  }
+  cli.write("a.vtk", "# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n"
+                     "0 0 0\n1 0 0\n0 1 0\n1 1 0\nCELLS 1 5\n4 0 1 2 3\n");
+  const auto ascii = cli("triangulate a.vtk");
+  CHECK(ascii.status == 2);
+  CHECK(ascii.err.find("a.vtk:5: truncated: the POINTS section announces 5 points (15 coordinates), the file has 12 "
+                       "before 'CELLS' on line 10") != std::string::npos);
+  CHECK(ascii.err.find("not a number") == std::string::npos);
+}
+
+TEST_CASE("files: an output that cannot be written fails before the work, leaving nothing", "[cli][files]") {
+  const auto cli = fresh("files_test_output_first");
+  fs::create_directory(cli.path("dir"));
+  cli.write("line.txt", "0 0\n1 1\n2 2\n");  // collinear: triangulating it is exit 1, not 2
+  cli.write("old.txt", "old\n");
+  struct Target {
+    std::string path, message;
+  };
+  std::vector<Target> targets = {{"nodir/out.txt", "nodir/out.txt: cannot create a temporary file in nodir/"},
+                                 {"dir", "dir: cannot open: Is a directory"},
+                                 {"''", "'': cannot open: No such file or directory"}};
+  if (::geteuid() != 0) {  // root may write a read-only file
+    REQUIRE(::chmod(cli.path("old.txt").c_str(), 0444) == 0);
+    targets.push_back({"old.txt", "old.txt: cannot write: Permission denied"});
+  } else {
+    WARN("running as root: the read-only file case is skipped");
+  }
+  for (const auto& [target, message] : targets) {
+    CAPTURE(target);
+    for (const std::string command : {"triangulate line.txt", "triangulate line.txt --stream", "draw line.txt --walls",
+                                      "triangulate no-such-input.txt", "generate uniform 1000 --dim 2"}) {
+      CAPTURE(command);
+      const auto r = cli(command + " -o " + target);
+      CHECK(r.status == 2);
+      CHECK(r.err.find(message) != std::string::npos);
+      CHECK(r.err.find("collinear") == std::string::npos);      // not triangulated
+      CHECK(r.err.find("no-such-input") == std::string::npos);  // not even read
+      CHECK(r.err.find("seed") == std::string::npos);           // not generated
+    }
+  }
+  CHECK(slurp(cli.path("old.txt")) == "old\n");
+  CHECK(fs::is_empty(cli.path("dir")));
+  CHECK(others(cli.dir, {"p.txt", "line.txt", "old.txt", "dir", "out.txt", "err.txt"}).empty());
+  // (A FIFO is not opened by the check: "a FIFO's reader gets the output" above.)
 }
 
 TEST_CASE("files: draw scales coordinates near the double range safely, refuses non-finite ones", "[cli][files]") {
@@ -481,6 +557,20 @@ TEST_CASE("quoting: printable, quoted and json_string", "[io][files]") {
   CHECK(printable("\xE2\x80\xAE" "txt") == "\\xe2\\x80\\xaetxt");      // right-to-left override
   CHECK(printable("\xC0\xAF\xED\xA0\x80") == "\\xc0\\xaf\\xed\\xa0\\x80");  // overlong, surrogate
   CHECK(printable(std::string(100, 'a'), 10) == "aaaaaaaaaa… (100 bytes)");
+  CHECK(printable("\xEF\xBB\xBF" "1\xE2\x80\x8B") == "\\xef\\xbb\\xbf1\\xe2\\x80\\x8b");  // a BOM, a zero-width space
+  CHECK(dewall::io::file_name("dir/file.txt") == "dir/file.txt");
+  const std::string long_name = "/a/" + std::string(300, 'x') + "/caf\xC3\xA9\x1b.txt";
+  const std::string shown = dewall::io::file_name(long_name);
+  CHECK(shown.rfind("/a/xxx", 0) == 0);
+  CHECK(shown.find("xxx…xxx") != std::string::npos);
+  CHECK(shown.find("/caf\xC3\xA9\\x1b.txt (314 bytes)") != std::string::npos);
+  CHECK(shown.size() < 220);
+  std::string accents;
+  for (int i = 0; i < 150; ++i) accents += "\xC3\xA9";
+  CHECK(valid_utf8(dewall::io::file_name(accents)));  // cut between characters, never inside one
+  const std::string controls(60, '\x01');  // 60 bytes, 240 once escaped
+  const std::string escaped24 = printable(controls.substr(36));  // 96 bytes
+  CHECK(dewall::io::file_name(controls) == escaped24 + "…" + escaped24 + " (60 bytes)");
   CHECK(quoted("x") == "'x'");
   CHECK(json_string("a\"b\\c\n\xff") == "\"a\\\"b\\\\c\\u000a\\\\xff\"");
   CHECK(valid_utf8(json_string("\xff\xfe\xc3(\xE2\x80\xAE")));

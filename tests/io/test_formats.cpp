@@ -310,6 +310,34 @@ TEST_CASE("VTK: points, binary legacy files, errors", "[formats]") {
     std::istringstream short_section("# vtk DataFile Version 3.0\nt\nASCII\nDATASET POLYDATA\nPOINTS 3 double\n0 0 0\n");
     CHECK_THROWS_WITH(read_vtk_points(short_section, "d.vtk"), Catch::Contains("truncated"));
   }
+  SECTION("a POINTS count that does not match the data: truncated or count mismatch, never read on") {
+    // Four 3D points, binary, then a cell section; the header announces `announced`.
+    const auto binary_file = [](int announced) {
+      std::string file = "# vtk DataFile Version 3.0\nt\nBINARY\nDATASET UNSTRUCTURED_GRID\nPOINTS " +
+                         std::to_string(announced) + " double\n";
+      for (double v : {0.0, 0.0, 1.0, 1.0, 0.0, 1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 2.0}) {
+        const auto bits = std::bit_cast<std::uint64_t>(v);
+        for (int shift = 56; shift >= 0; shift -= 8) file += static_cast<char>((bits >> shift) & 0xff);
+      }
+      file += "\nCELLS 1 5\n";
+      for (std::uint32_t v : {4u, 0u, 1u, 2u, 3u, 10u, 10u, 10u, 10u, 10u, 10u, 10u})  // and padding
+        for (int shift = 24; shift >= 0; shift -= 8) file += static_cast<char>((v >> shift) & 0xff);
+      return file;
+    };
+    std::istringstream exact(binary_file(4));
+    CHECK(read_vtk_points(exact, "e.vtk").size() == 4);
+    std::istringstream fewer(binary_file(3));  // the fourth point is not a section
+    CHECK_THROWS_WITH(read_vtk_points(fewer, "f.vtk"), Catch::Contains("f.vtk:5: count mismatch") &&
+                                                           Catch::Contains("announces 3 points"));
+    std::istringstream more(binary_file(5));  // would read a "point" out of CELLS
+    CHECK_THROWS_WITH(read_vtk_points(more, "g.vtk"), Catch::Contains("g.vtk:5: count mismatch"));
+    std::istringstream far_more(binary_file(9));  // runs past the end
+    CHECK_THROWS_WITH(read_vtk_points(far_more, "h.vtk"), Catch::Contains("truncated"));
+    std::istringstream ascii("# vtk DataFile Version 3.0\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n"
+                             "0 0 0 1 0 0\n0 1 0 1 1 0\nCELLS 1 5\n4 0 1 2 3\n");
+    CHECK_THROWS_WITH(read_vtk_points(ascii, "i.vtk"),
+                      Catch::Contains("i.vtk:5: truncated") && Catch::Contains("the file has 12 before 'CELLS' on line 8"));
+  }
 }
 
 TEST_CASE("atomic writes leave nothing behind on failure", "[formats]") {

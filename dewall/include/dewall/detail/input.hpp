@@ -37,7 +37,7 @@ std::vector<std::size_t> distinct_points(const K& k, std::span<const typename K:
     const auto x = coords(points[i]);
     for (int j = 0; j < D; ++j)
       if (!kernel::is_finite(x[j]))
-        throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
+        throw Invalid_input(i, "has a non-finite coordinate (NaN or infinity)");
   }
   const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object(), coords);
   std::vector<std::size_t> kept;

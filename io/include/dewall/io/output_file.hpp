@@ -16,7 +16,9 @@
 //    group where the process may set them); hard links to the old file keep
 //    the old contents, since the name now points to a new file. A read-only
 //    target is refused, as the shell would. The temporary is removed on every
-//    error, on an exception, and on SIGINT, SIGTERM and SIGHUP.
+//    error, on an exception, and on a signal that ends the process from
+//    outside (SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGALRM, SIGUSR1, SIGUSR2,
+//    SIGVTALRM, SIGPROF, SIGXCPU, SIGPIPE).
 //  * A symbolic link: followed to its final target (the temporary goes in that
 //    target's directory), so the link stays a link and the file it points to is
 //    replaced; a dangling link creates its target.
@@ -62,6 +64,15 @@ class Output_file {
   /// direct target (a pipe or a device cannot seek).
   /// \throws Write_error when the write fails.
   bool patch(std::size_t offset, const void* data, std::size_t size);
+  /// Checks, before a long computation, that `path` can be written as the
+  /// constructor would write it, and leaves nothing behind: for a regular file
+  /// or a new name the temporary is created beside the target and removed (a
+  /// missing directory, a read-only file or directory, a directory as the
+  /// target, the empty name fail here); a target written in place is not
+  /// opened (a FIFO's reader would see its end), only checked to be writable
+  /// and not a directory. Standard output ("-") is not checked.
+  /// \throws Write_error, as the constructor would.
+  static void probe(const std::string& path);
   /// The target as messages name it ("<stdout>", or the path made printable).
   const std::string& name() const;
   /// True when the target is written in place (standard output, devices,

@@ -14,11 +14,18 @@ namespace dewall::io {
 /// `s` with every byte that is not printable text escaped: the C0 controls
 /// and DEL as \t, \n, \r or \xNN, the C1 controls (U+0080 … U+009F, which some
 /// terminals obey), the bidirectional overrides (U+202A … U+202E, U+2066 …
-/// U+2069) and bytes that are not valid UTF-8 as \xNN per byte, and the
-/// backslash as \\. Valid UTF-8 text (accents, CJK) is kept as it is. When the
+/// U+2069), the characters that print as nothing (U+FEFF, U+200B … U+200F,
+/// U+2028, U+2029, U+2060 … U+2064, U+061C) and bytes that are not valid
+/// UTF-8 as \xNN per byte, and the backslash as \\. Valid UTF-8 text
+/// (accents, CJK) is kept as it is. When the
 /// escaped text would exceed `max_bytes`, it is cut at a character boundary and
 /// "… (N bytes)" says how long `s` was. Complexity: O(|s|).
 std::string printable(std::string_view s, std::size_t max_bytes = std::string::npos);
+
+/// How a message names a file: printable(path), and for a path whose escaped
+/// form exceeds 200 bytes its first and last 96 or so bytes around "…" and
+/// " (N bytes)" (the start says where, the end which file). O(|path|).
+std::string file_name(std::string_view path);
 
 /// printable(s, 60) between single quotes: how an input token or an argument is
 /// named in a message ("'1e3x' is not a number").

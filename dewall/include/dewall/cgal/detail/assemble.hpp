@@ -120,7 +120,7 @@ std::optional<std::vector<kernel::Point_d<D>>> to_dewall_points(const Items& ite
       if (!to_exact_double(coord(p, j), out[i][j])) return std::nullopt;
     }
     if (!kernel::is_finite(out[i]))
-      throw Invalid_input("point " + std::to_string(i) + " has a non-finite coordinate (NaN or infinity)", i);
+      throw Invalid_input(i, "has a non-finite coordinate (NaN or infinity)");
   }
   return out;
 }
