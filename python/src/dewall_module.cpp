@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -237,6 +238,29 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
   });
 }
 
+/// A Triangulation over stored simplices (unpickling): no triangulation is
+/// run. The rows must be a previous result for these points (dewall.Delaunay
+/// pickles its own); indices are checked, the rest is trusted, as locate's
+/// walk needs only valid indices to terminate (it falls back to a full scan).
+std::unique_ptr<Triangulation> from_simplices(py::handle points_in, py::handle simplices_in) {
+  py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto* first = static_cast<const std::uint32_t*>(simplices.data());
+  const auto count = static_cast<std::size_t>(simplices.shape(0));
+  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
+    if (first[i] >= n) throw py::value_error("simplices: index " + std::to_string(first[i]) + " is not a point index");
+  return dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    Cells<D> cells;
+    cells.simplices.resize(count);
+    static_assert(sizeof(dewall::Simplex<D>) == (D + 1) * sizeof(std::uint32_t));
+    std::memcpy(cells.simplices.data(), first, count * sizeof(dewall::Simplex<D>));
+    return std::make_unique<Triangulation>(points, std::move(cells), dewall::Statistics{}, 0.0);
+  });
+}
+
 py::dict violation_dict(const dewall::certify::Violation& v) {
   const auto index = [](std::size_t i) -> py::object {
     return i == dewall::certify::npos ? py::object(py::none()) : py::object(py::int_(i));
@@ -325,6 +349,7 @@ PYBIND11_MODULE(_dewall, m) {
       .def("first_occurrences", &Triangulation::first_occurrences);
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
+  m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));
