@@ -17,8 +17,9 @@ from ._certify import Certificate, Violation, certify
 from ._delaunay import Delaunay
 from ._errors import DegenerateInput, InvalidInput, InvalidOption, QhullError
 from ._generate import KINDS, generate
+from ._hull import ConvexHull, Voronoi
 from . import interpolate
 
-__all__ = ["Delaunay", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput",
+__all__ = ["Delaunay", "ConvexHull", "Voronoi", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput",
            "DegenerateInput", "InvalidOption", "QhullError", "interpolate"]
 __version__ = "0.1.0"

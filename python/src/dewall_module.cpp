@@ -169,6 +169,40 @@ class Triangulation {
     }, cells_);
   }
 
+  /// The pairs (i, n), i < n, of neighbouring simplices with one circumsphere:
+  /// the vertex of n opposite their shared facet lies exactly on the sphere of
+  /// i (the unperturbed test is ZERO). Voronoi merges such simplices into one
+  /// vertex, as the diagram of the unperturbed points has.
+  py::array cospherical_neighbours() {
+    return std::visit([&](auto& c) {
+      constexpr int D = std::decay_t<decltype(c)>::dimension;
+      compute_neighbors(c);
+      std::vector<std::array<std::int32_t, 2>> pairs;
+      {
+        py::gil_scoped_release release;
+        const auto points = as_points<D>(points_);
+        const auto sphere = Kernel<D>{}.side_of_oriented_sphere_unperturbed_d_object();
+        for (std::size_t i = 0; i < c.simplices.size(); ++i) {
+          for (int j = 0; j <= D; ++j) {
+            const std::int32_t n = c.neighbors[i][static_cast<std::size_t>(j)];
+            if (n < 0 || static_cast<std::size_t>(n) < i) continue;
+            // the vertex of n that is not in simplex i: the one whose neighbour is i
+            std::size_t opposite = 0;
+            for (int k = 0; k <= D; ++k)
+              if (c.neighbors[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)] == static_cast<std::int32_t>(i))
+                opposite = c.simplices[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
+            std::array<const Point_d<D>*, D + 2> s;
+            for (int k = 0; k <= D; ++k) s[static_cast<std::size_t>(k)] = &points[c.simplices[i][static_cast<std::size_t>(k)]];
+            s[D + 1] = &points[opposite];
+            if (sphere(s) == dewall::kernel::ON_ORIENTED_BOUNDARY) pairs.push_back({static_cast<std::int32_t>(i), n});
+          }
+        }
+      }
+      const auto rows = static_cast<py::ssize_t>(pairs.size());
+      return adopt<std::int32_t>(std::move(pairs), {rows, 2});
+    }, cells_);
+  }
+
   /// For each input point, the input index of the vertex that stands for it
   /// (itself unless it duplicates an earlier point).
   py::array first_occurrences() const {
@@ -346,7 +380,8 @@ PYBIND11_MODULE(_dewall, m) {
       .def("simplices", [](py::object self) { return self.cast<Triangulation&>().simplices(self); })
       .def("neighbors", [](py::object self) { return self.cast<Triangulation&>().neighbors(self); })
       .def("locate", &Triangulation::locate, py::arg("xi"))
-      .def("first_occurrences", &Triangulation::first_occurrences);
+      .def("first_occurrences", &Triangulation::first_occurrences)
+      .def("cospherical_neighbours", &Triangulation::cospherical_neighbours);
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));

@@ -1,0 +1,274 @@
+"""dewall.ConvexHull and dewall.Voronoi: scipy.spatial's interfaces, from the exact Delaunay triangulation.
+
+The hull facets are the Delaunay triangulation's boundary facets, the Voronoi
+vertices its circumcentres (simplices with exactly one circumsphere, decided by
+the exact unperturbed sphere test, give one vertex), the Voronoi ridges the duals
+of its edges. Topology is exact; coordinates, normals, volumes are floating
+point from the points.
+"""
+
+import numpy as np
+
+from ._delaunay import Delaunay, _check_qhull_options
+
+__all__ = ["ConvexHull", "Voronoi"]
+
+
+class _FromDelaunay:
+    """Construction, incremental mode and bounds shared by ConvexHull and Voronoi."""
+
+    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None):
+        _check_qhull_options(qhull_options)
+        self._tri = Delaunay(points, incremental=incremental, engine=engine, threads=threads)
+        self._update()
+
+    def _update(self):
+        tri = self._tri
+        self.points, self.ndim, self.npoints = tri.points, tri.ndim, tri.npoints
+        self.min_bound, self.max_bound = tri.min_bound, tri.max_bound
+        self.furthest_site = False
+        self._compute()
+
+    def add_points(self, points, restart=False):
+        """As scipy: needs incremental=True and no close(); dewall recomputes from all the points."""
+        self._tri.add_points(points, restart)
+        self._update()
+
+    def close(self):
+        self._tri.close()
+
+
+def _ridge_pairs(facets):
+    """Each facet's ridges (the facet without its vertex j) matched in pairs: neighbors[i, j]
+    is the facet sharing the ridge of facet i opposite its vertex j (-1 when none)."""
+    m, k = facets.shape
+    ridges = np.sort(np.stack([np.delete(facets, j, axis=1) for j in range(k)], axis=1), axis=2)  # (m, k, k-1)
+    flat = ridges.reshape(m * k, k - 1)
+    order = np.lexsort(flat.T[::-1])
+    same = np.all(flat[order][1:] == flat[order][:-1], axis=1)
+    neighbors = np.full(m * k, -1, dtype=np.int32)
+    first, second = order[:-1][same], order[1:][same]
+    neighbors[first], neighbors[second] = second // k, first // k
+    return neighbors.reshape(m, k)
+
+
+class ConvexHull(_FromDelaunay):
+    """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
+
+    ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+
+    Attributes (as scipy's): points, vertices (2-D: counterclockwise), simplices (the facets,
+    triangulated), neighbors, equations (outward unit normal, offset; normal . x + offset <= 0
+    inside), coplanar, good (None), volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
+
+    The facets are the boundary facets of the exact Delaunay triangulation, so on random
+    points they are Qhull's. Where several points lie in one hull facet (a cube's faces, a
+    grid) they are all vertices here, each facet triangulated by CGAL's perturbation;
+    Qhull reports the extreme points only and lists the others in `coplanar`. Duplicates of
+    a hull vertex are in `coplanar`.
+    """
+
+    def _compute(self):
+        tri = self._tri
+        simplex, opposite = np.nonzero(tri.neighbors == -1)
+        d = self.ndim
+        self.simplices = tri.convex_hull
+        self.nsimplex = self.simplices.shape[0]
+        self.neighbors = _ridge_pairs(self.simplices)
+        self.vertices = self._ordered_vertices()
+        corners = self.points[self.simplices]  # (m, d, d)
+        edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
+        normal = np.stack([(-1) ** k * np.linalg.det(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
+        inner = self.points[tri.simplices[simplex, opposite]]  # a point inside: the simplex's other vertex
+        normal *= np.where(np.einsum("ij,ij->i", normal, inner - corners[:, 0, :]) > 0, -1.0, 1.0)[:, None]
+        length = np.linalg.norm(normal, axis=1)
+        normal /= length[:, None]
+        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, corners[:, 0, :])))
+        factorial = float(np.prod(np.arange(1, d + 1)))
+        self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure
+        full = self.points[tri.simplices]
+        self.volume = float(np.abs(np.linalg.det(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
+        on_hull = np.zeros(self.npoints, dtype=bool)
+        on_hull[self.simplices] = True
+        dup = tri.duplicates
+        dup = dup[on_hull[dup[:, 1]]]
+        facet_of = np.full(self.npoints, -1, dtype=np.int32)
+        facet_of[self.simplices.ravel()] = np.repeat(np.arange(self.nsimplex, dtype=np.int32), d)
+        self.coplanar = np.column_stack((dup[:, 0], facet_of[dup[:, 1]], dup[:, 1])).astype(np.int32)
+        self.good = None
+
+    def _ordered_vertices(self):
+        unique = np.unique(self.simplices).astype(np.int32)
+        if self.ndim != 2:
+            return unique
+        # 2-D: follow the edges. Each hull edge (a, b) of a positively oriented triangle, with
+        # the triangle's third vertex removed, keeps the triangle's counterclockwise order.
+        tri = self._tri
+        simplex, opposite = np.nonzero(tri.neighbors == -1)
+        after = {}
+        for s, j in zip(simplex, opposite):
+            row = tri.simplices[s]
+            a, b = int(row[(j + 1) % 3]), int(row[(j + 2) % 3])
+            after[a] = b
+        start = int(unique[0])
+        order = [start]
+        while after[order[-1]] != start:
+            order.append(after[order[-1]])
+        return np.array(order, dtype=np.int32)
+
+
+class Voronoi(_FromDelaunay):
+    """The Voronoi diagram of points in E^d (d = 2 … 6), with scipy.spatial.Voronoi's interface.
+
+    Voronoi(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+
+    Attributes (as scipy's): points, vertices, ridge_points, ridge_vertices, regions,
+    point_region, ridge_dict, furthest_site, min_bound, max_bound, ndim, npoints.
+
+    Vertices are the circumcentres of the Delaunay simplices, one for each set of
+    neighbouring simplices with exactly one circumsphere (the exact unperturbed sphere
+    test): four cocircular points give one vertex, where Qhull may give several nearly
+    equal ones. A ridge is listed for each Delaunay edge whose dual has at least d distinct
+    vertices (counting -1, the vertex at infinity, for a hull edge): edges inside a
+    cospherical cell, whose dual collapsed, are not ridges. Regions: one per distinct input
+    point (the circumcentres around it, -1 when the region is unbounded; in 2-D in
+    counterclockwise order, in 3-D ridges in cyclic order), then an empty one, as Qhull's
+    output has; a duplicate point shares its first occurrence's region. furthest_site=True
+    raises NotImplementedError.
+    """
+
+    def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
+                 threads=None):
+        if furthest_site:
+            raise NotImplementedError("furthest_site=True: dewall does not compute furthest-site diagrams yet")
+        super().__init__(points, incremental, qhull_options, engine=engine, threads=threads)
+
+    def _compute(self):
+        tri = self._tri
+        d, simplices = self.ndim, tri.simplices.astype(np.int64)
+        group = self._group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
+        self.vertices = _circumcentres(self.points, tri.simplices, group)
+        # Delaunay edges, and for each the Voronoi vertices of the simplices around it.
+        a, b = np.triu_indices(d + 1, 1)
+        edges = np.sort(np.stack((simplices[:, a], simplices[:, b]), axis=2), axis=2).reshape(-1, 2)
+        owner = np.repeat(np.arange(tri.nsimplex), a.size)
+        order = np.lexsort((edges[:, 1], edges[:, 0]))
+        edges, owner = edges[order], owner[order]
+        starts = np.r_[0, np.nonzero(np.any(edges[1:] != edges[:-1], axis=1))[0] + 1]
+        hull_edges = _hull_edges(tri)
+        ridge_points, ridge_vertices = [], []
+        for start, stop in zip(starts, np.r_[starts[1:], len(edges)]):
+            p, q = map(int, edges[start])
+            around = list(dict.fromkeys(int(g) for g in group[owner[start:stop]]))
+            if (p, q) in hull_edges:
+                around.insert(0, -1)
+            if len(around) < d:
+                continue
+            if d == 3:
+                around = self._cyclic(around, p, q)
+            ridge_points.append((p, q))
+            ridge_vertices.append(around)
+        self.ridge_points = np.array(ridge_points, dtype=np.int32).reshape(-1, 2)
+        self.ridge_vertices = ridge_vertices
+        # Regions: the vertices around each distinct point.
+        first = np.arange(self.npoints)
+        dup = tri.duplicates
+        first[dup[:, 0]] = dup[:, 1]
+        on_hull = np.zeros(self.npoints, dtype=bool)
+        on_hull[tri.convex_hull] = True
+        incident = [[] for _ in range(self.npoints)]
+        for s, row in enumerate(tri.simplices):
+            for v in row:
+                incident[v].append(int(group[s]))
+        self.regions, self.point_region = [], np.empty(self.npoints, dtype=np.intp)
+        for i in range(self.npoints):
+            if first[i] != i:
+                continue
+            if d == 2:
+                region = self._counterclockwise(i)
+            else:
+                region = list(dict.fromkeys(incident[i]))
+            if d != 2 and on_hull[i]:
+                region.insert(0, -1)
+            self.point_region[i] = len(self.regions)
+            self.regions.append(region)
+        self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
+        self.regions.append([])
+
+    def _counterclockwise(self, site):
+        """2-D: the Voronoi vertices around `site` counterclockwise, by walking the triangles
+        around it (topology, not angles); an unbounded region starts at the triangle after the
+        hull and ends with -1."""
+        tri = self._tri
+        simplices, neighbors = tri.simplices, tri.neighbors
+        start = int(tri.vertex_to_simplex[site])
+
+        def step(s, turn):  # the next triangle around the site: turn 1 counterclockwise, 2 clockwise
+            k = list(simplices[s]).index(site)
+            return int(neighbors[s, (k + turn) % 3])
+
+        s = start
+        while True:  # clockwise to the hull, or once around
+            back = step(s, 2)
+            if back in (-1, start):
+                break
+            s = back
+        first, walk = s, [s]
+        while True:
+            s = step(s, 1)
+            if s in (-1, first):
+                break
+            walk.append(s)
+        return list(dict.fromkeys(int(self._group[t]) for t in walk)) + ([-1] if s == -1 else [])
+
+    def _cyclic(self, around, p, q):
+        """3-D: the ridge's finite vertices in cyclic order around the edge pq (-1 first if any)."""
+        finite = [v for v in around if v >= 0]
+        axis = self.points[q] - self.points[p]
+        u = np.cross(axis, [1.0, 0, 0] if abs(axis[0]) < 0.9 * np.linalg.norm(axis) else [0, 1.0, 0])
+        w = np.cross(axis, u)
+        rel = self.vertices[finite] - self.points[p]
+        order = [finite[k] for k in np.argsort(np.arctan2(rel @ w, rel @ u))]
+        return ([-1] if len(finite) < len(around) else []) + order
+
+    @property
+    def ridge_dict(self):
+        """{(p, q): ridge vertices} for each ridge, as scipy's."""
+        return {tuple(map(int, pq)): v for pq, v in zip(self.ridge_points, self.ridge_vertices)}
+
+
+def _merge(count, pairs):
+    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find)."""
+    parent = np.arange(count)
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, n in pairs:
+        ri, rn = root(i), root(n)
+        if ri != rn:
+            parent[max(ri, rn)] = min(ri, rn)
+    roots = np.array([root(i) for i in range(count)]) if len(pairs) else parent
+    _, group = np.unique(roots, return_inverse=True)
+    return group
+
+
+def _circumcentres(points, simplices, group):
+    """Circumcentre of the first simplex of each group: solve 2 (v_j - v_0) . c = |v_j|^2 - |v_0|^2,
+    relative to v_0 for accuracy."""
+    _, first = np.unique(group, return_index=True)
+    v = points[simplices[first]]
+    edges = v[:, 1:, :] - v[:, :1, :]
+    rhs = 0.5 * np.einsum("ijk,ijk->ij", edges, edges)
+    return v[:, 0, :] + np.linalg.solve(edges, rhs[:, :, None])[:, :, 0]
+
+
+def _hull_edges(tri):
+    """The Delaunay edges on the convex hull, as sorted (p, q) tuples."""
+    hull = tri.convex_hull
+    a, b = np.triu_indices(hull.shape[1], 1)
+    pairs = np.sort(np.stack((hull[:, a], hull[:, b]), axis=2), axis=2).reshape(-1, 2)
+    return set(map(tuple, np.unique(pairs, axis=0).tolist()))

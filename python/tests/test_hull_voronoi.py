@@ -1,0 +1,124 @@
+"""dewall.ConvexHull and dewall.Voronoi against scipy.spatial's on the same points (compared as
+sets), plus cases ported from scipy 1.10's test_qhull.py (TestConvexHull, TestVoronoi)."""
+
+import numpy as np
+import pytest
+import scipy.spatial as ss
+
+import dewall
+from conftest import simplex_set
+
+
+def nearest_rows(reference, coordinates):
+    """For each row of coordinates, the index of the equal (to 1e-9) row of reference."""
+    distance = np.linalg.norm(coordinates[:, None, :] - reference[None, :, :], axis=2)
+    rows = distance.argmin(axis=1)
+    assert (distance[np.arange(len(rows)), rows] < 1e-9).all()
+    return rows
+
+
+@pytest.mark.parametrize("d, n", [(2, 150), (3, 80), (4, 40)])
+def test_convex_hull_equals_scipy(d, n, rng):
+    points = rng.random((n, d))
+    ours, theirs = dewall.ConvexHull(points), ss.ConvexHull(points)
+    assert simplex_set(ours.simplices) == simplex_set(theirs.simplices)
+    assert ours.volume == pytest.approx(theirs.volume, rel=1e-12)
+    assert ours.area == pytest.approx(theirs.area, rel=1e-12)
+    np.testing.assert_array_equal(np.sort(ours.vertices), np.sort(theirs.vertices))
+    row = {tuple(sorted(f)): i for i, f in enumerate(theirs.simplices)}
+    match = [row[tuple(sorted(f))] for f in ours.simplices]
+    np.testing.assert_allclose(ours.equations, theirs.equations[match], atol=1e-12)
+    for i, facet in enumerate(ours.simplices):  # neighbour opposite vertex j: same vertex set as scipy's
+        for j, v in enumerate(facet):
+            k = list(theirs.simplices[match[i]]).index(v)
+            assert set(ours.simplices[ours.neighbors[i, j]]) == set(theirs.simplices[theirs.neighbors[match[i], k]])
+    assert (points @ ours.equations[:, :-1].T + ours.equations[:, -1] <= 1e-12).all()
+
+
+@pytest.mark.parametrize("d, n", [(2, 150), (3, 60), (4, 30)])
+def test_voronoi_equals_scipy(d, n, rng):
+    points = rng.random((n, d))
+    ours, theirs = dewall.Voronoi(points), ss.Voronoi(points)
+    assert ours.vertices.shape == theirs.vertices.shape
+    to_theirs = nearest_rows(theirs.vertices, ours.vertices)
+
+    def mapped(vertices):
+        return frozenset(-1 if v == -1 else int(to_theirs[v]) for v in vertices)
+
+    assert ({tuple(sorted(p)): mapped(v) for p, v in zip(ours.ridge_points, ours.ridge_vertices)} ==
+            {tuple(sorted(p)): frozenset(v) for p, v in zip(theirs.ridge_points, theirs.ridge_vertices)})
+    assert len(ours.regions) == len(theirs.regions) == n + 1 and ours.point_region.shape == (n,)
+    for i in range(n):
+        assert mapped(ours.regions[ours.point_region[i]]) == frozenset(theirs.regions[theirs.point_region[i]])
+    if d == 2:  # Qhull's cyclic order (in either direction: Qhull's turn either way), ours counterclockwise
+        for i in range(n):
+            region = [int(to_theirs[v]) if v >= 0 else -1 for v in ours.regions[ours.point_region[i]]]
+            reference = theirs.regions[theirs.point_region[i]]
+            k = reference.index(region[0])
+            backwards = reference[::-1]
+            m = backwards.index(region[0])
+            assert region in (reference[k:] + reference[:k], backwards[m:] + backwards[:m])
+            finite = [v for v in ours.regions[ours.point_region[i]] if v >= 0]
+            if len(finite) < len(region):
+                continue  # unbounded: the chain from one hull triangle to the other
+            angle = np.unwrap(np.arctan2(*(ours.vertices[finite] - points[i]).T[::-1]))
+            assert (np.diff(angle) > 0).all()
+
+
+# ---- ported from scipy's test_qhull.py ---------------------------------------------------------
+
+
+def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
+    for cls in (dewall.ConvexHull, dewall.Voronoi):
+        with pytest.raises(ValueError):
+            cls(np.ma.masked_all((4, 2)))
+    with pytest.raises(ValueError):
+        dewall.ConvexHull(np.array([(0, 0), (1, 1), (2, np.nan)]))
+
+
+def test_vertices_2d_counterclockwise(rng):  # TestConvexHull.test_vertices_2d
+    hull = dewall.ConvexHull(rng.random((30, 2)))
+    np.testing.assert_array_equal(np.unique(hull.simplices), np.sort(hull.vertices))
+    x, y = hull.points[hull.vertices].T
+    assert (np.diff(np.unwrap(np.arctan2(y - y.mean(), x - x.mean()))) > 0).all()
+
+
+def test_volume_area_cube():  # TestConvexHull.test_volume_area
+    points = np.array([(0, 0, 0), (0, 1, 0), (1, 0, 0), (1, 1, 0), (0, 0, 1), (0, 1, 1), (1, 0, 1), (1, 1, 1)])
+    hull = dewall.ConvexHull(points)
+    assert hull.volume == pytest.approx(1.0, rel=1e-14) and hull.area == pytest.approx(6.0, rel=1e-14)
+
+
+def test_hull_incremental(rng):  # TestConvexHull.test_incremental (bug-2850)
+    chunks = [rng.random((10, 2)), np.array([[0, 0], [0, 1], [1, 0], [1, 1]])]
+    hull = dewall.ConvexHull(chunks[0], incremental=True)
+    hull.add_points(chunks[1])
+    assert simplex_set(hull.simplices) == {(10, 11), (10, 12), (11, 13), (12, 13)}
+
+
+def test_voronoi_simple_grid():  # TestVoronoi.test_simple, as sets (scipy pins Qhull's numbering)
+    points = np.array([(x, y) for x in range(3) for y in range(3)], dtype=float)
+    vor = dewall.Voronoi(points)
+    expected = np.array([(0.5, 0.5), (0.5, 1.5), (1.5, 0.5), (1.5, 1.5)])
+    assert vor.vertices.shape == (4, 2)  # cocircular squares: one vertex each, exactly
+    to_expected = nearest_rows(expected, vor.vertices)
+    regions = {frozenset(-1 if v == -1 else int(to_expected[v]) for v in r) for r in vor.regions}
+    assert regions == {frozenset(r) for r in [[-1, 0], [-1, 0, 1], [1, -1], [-1, 2, 0], [0, 1, 3, 2], [-1, 3, 1],
+                                              [2, -1], [-1, 3, 2], [-1, 3], []]}
+    assert len(vor.ridge_points) == 12
+    assert vor.furthest_site is False
+    with pytest.raises(NotImplementedError):
+        dewall.Voronoi(points, furthest_site=True)
+
+
+@pytest.mark.parametrize("d", [2, 3, 4])
+def test_ridges_separate_nearest_neighbours(d, rng):  # TestVoronoi.test_ridges
+    points = rng.random((30, d))
+    tree = ss.cKDTree(points)
+    vor = dewall.Voronoi(points)
+    for (p, q), v in vor.ridge_dict.items():
+        if min(v) < 0:
+            continue
+        middle = vor.vertices[v].mean(axis=0)
+        step = 1e-6 * (points[p] - middle)
+        assert tree.query(middle + step)[1] == p and tree.query(middle - step)[1] == q
