@@ -366,7 +366,12 @@ class Delaunay:
         if not eps >= 0:
             raise ValueError(f"tol must be a non-negative number, not {tol!r}")
         flat = as_coordinates(xi.reshape(-1, self.ndim), "xi")
-        found = self._triangulation.locate(flat)
+        if flat.shape[0] > 64:  # walk in space-filling-curve order: each walk starts near its answer
+            order = _morton_order(flat, self.min_bound, self.max_bound)
+            found = np.empty(flat.shape[0], dtype=np.int32)
+            found[order] = self._triangulation.locate(np.ascontiguousarray(flat[order]))
+        else:
+            found = self._triangulation.locate(flat)
         if eps > 0:
             self._within_tolerance(flat, found, eps)
         return found.reshape(xi.shape[:-1])
@@ -434,6 +439,21 @@ class Delaunay:
         return f"<dewall.Delaunay: {self.npoints} points in E^{self.ndim}, {self.nsimplex} simplices>"
 
 
+def _morton_order(x, low, high, bits=10):
+    """The permutation sorting the rows of x along a Z-order curve over the box [low, high]
+    (2^bits cells per axis; rows outside the box or non-finite go to its faces). Only the
+    speed of the walks depends on it, never which simplex contains a point."""
+    with np.errstate(all="ignore"):
+        unit = np.nan_to_num((x - low) / np.where(high > low, high - low, 1.0), nan=0.0, posinf=1.0, neginf=0.0)
+    cells = np.clip(unit * (1 << bits), 0, (1 << bits) - 1).astype(np.uint64)
+    code = np.zeros(x.shape[0], dtype=np.uint64)
+    d = x.shape[1]
+    for bit in range(bits):
+        for axis in range(d):
+            code |= ((cells[:, axis] >> np.uint64(bit)) & np.uint64(1)) << np.uint64(bit * d + axis)
+    return np.argsort(code, kind="stable")
+
+
 class _ShapeError(TypeError, ValueError):
     """A query array of the wrong shape: a ValueError as scipy raises ("wrong dimensionality in
     xi"), and a TypeError as dewall raised before."""
@@ -445,18 +465,48 @@ def barycentric(transform, x):
     return np.concatenate((c, 1 - c.sum(axis=-1, keepdims=True)), axis=-1)
 
 
+def _inverse_and_determinant(e):
+    """T^-1 and det T for a stack of small matrices T given by their columns, e[:, j] = column j
+    (m, d, d): by the adjugate in 2-D and 3-D (a few vector operations, where batched LAPACK
+    costs a call per matrix), by LU beyond. Singular matrices get NaN inverses."""
+    m, d, _ = e.shape
+    if d == 2:  # T = [[a, b], [c, f]]
+        a, c, b, f = e[:, 0, 0], e[:, 0, 1], e[:, 1, 0], e[:, 1, 1]
+        det = a * f - b * c
+        adjugate = np.empty((m, 2, 2))
+        adjugate[:, 0, 0], adjugate[:, 0, 1], adjugate[:, 1, 0], adjugate[:, 1, 1] = f, -b, -c, a
+    elif d == 3:  # row i of the adjugate: the cross product of the other two columns
+        adjugate = np.empty((m, 3, 3))
+        for i, (j, k) in enumerate(((1, 2), (2, 0), (0, 1))):
+            u, v = e[:, j], e[:, k]
+            adjugate[:, i, 0] = u[:, 1] * v[:, 2] - u[:, 2] * v[:, 1]
+            adjugate[:, i, 1] = u[:, 2] * v[:, 0] - u[:, 0] * v[:, 2]
+            adjugate[:, i, 2] = u[:, 0] * v[:, 1] - u[:, 1] * v[:, 0]
+        det = np.einsum("ij,ij->i", e[:, 0], adjugate[:, 0])
+    else:
+        t = np.swapaxes(e, 1, 2)
+        det = np.linalg.det(t)
+        singular = ~(np.abs(det) > 0)
+        safe = np.array(t)
+        safe[singular] = np.eye(d)
+        inverse = np.linalg.inv(safe)
+        inverse[singular] = np.nan
+        return inverse, det
+    with np.errstate(all="ignore"):
+        adjugate /= det[:, None, None]
+    return adjugate, det
+
+
 def barycentric_transforms(points, simplices):
     """scipy's transform array for `simplices` of `points` (see Delaunay.transform)."""
     vertices = points[simplices]  # (m, d + 1, d)
     r = vertices[:, -1, :]
-    t = np.swapaxes(vertices[:, :-1, :] - r[:, None, :], 1, 2)  # column j: vertex j - r
+    columns = vertices[:, :-1, :] - r[:, None, :]  # columns[:, j]: vertex j - r, column j of T
     d = points.shape[1]
-    with np.errstate(all="ignore"):
-        singular = ~(np.abs(np.linalg.det(t)) > 0)
-        t[singular] = np.eye(d)
-        inverse = np.linalg.inv(t)
-        rcond = 1 / (np.abs(t).sum(axis=1).max(axis=1) * np.abs(inverse).sum(axis=1).max(axis=1))
-    bad = singular | ~(rcond >= _RCOND_LIMIT)
+    inverse, det = _inverse_and_determinant(columns)
+    with np.errstate(all="ignore"):  # reciprocal condition number in the 1-norm (largest column sum)
+        rcond = 1 / (np.abs(columns).sum(axis=2).max(axis=1) * np.abs(inverse).sum(axis=1).max(axis=1))
+    bad = ~(np.abs(det) > 0) | ~(rcond >= _RCOND_LIMIT)
     out = np.empty((simplices.shape[0], d + 1, d))
     out[:, :d, :] = inverse
     out[:, d, :] = r
