@@ -391,6 +391,8 @@ class Delaunay:
         transform = self.transform[hull]
         valid = np.isfinite(transform[:, 0, 0])
         hull, transform = hull[valid], transform[valid]
+        if hull.size == 0:
+            return
         step = max(1, chunk // max(1, hull.size * (self.ndim + 1)))
         for start in range(0, candidates.size, step):
             rows = candidates[start:start + step]

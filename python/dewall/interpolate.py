@@ -14,7 +14,7 @@ where Qhull's triangulation has flat simplices.
 
 Cubic (CloughTocher2DInterpolator, griddata(method="cubic")) and nearest are
 scipy's own code, so they need scipy: Clough-Tocher gets dewall's triangulation
-handed over as a scipy.spatial.Delaunay (_as_scipy_delaunay), so its gradients
+handed over as a scipy.spatial.Delaunay (as_scipy_delaunay), so its gradients
 and patches are built on the exact triangulation, while scipy's code locates
 the queries in it (its tolerant walk). Nearest does not triangulate (a k-d
 tree): scipy's NearestNDInterpolator as it is. griddata on 1-D data is scipy's.
@@ -24,7 +24,8 @@ import numpy as np
 
 from ._delaunay import Delaunay, barycentric
 
-__all__ = ["LinearNDInterpolator", "CloughTocher2DInterpolator", "NearestNDInterpolator", "griddata"]
+__all__ = ["LinearNDInterpolator", "CloughTocher2DInterpolator", "NearestNDInterpolator", "griddata",
+           "as_scipy_delaunay"]
 
 
 def _coordinates(args, ndim):
@@ -147,10 +148,16 @@ def _weights_directly(vertices, x):
     return np.linalg.solve(system, rhs[:, :, None])[:, :, 0]
 
 
-def _as_scipy_delaunay(tri):
-    """dewall's triangulation as a scipy.spatial.Delaunay instance (for scipy's interpolators,
-    which accept only that type): every attribute scipy's code reads is dewall's, copied
-    writable (scipy's Cython code takes writable buffers). No Qhull run."""
+def as_scipy_delaunay(tri):
+    """dewall's triangulation `tri` as a scipy.spatial.Delaunay instance, for code that accepts
+    only that type (scipy.interpolate's interpolators check isinstance):
+
+        scipy.interpolate.LinearNDInterpolator(as_scipy_delaunay(tri), values)
+
+    Every attribute scipy's code reads (simplices, neighbors, equations, transform,
+    paraboloid_*, bounds, vertex_to_simplex, vertex_neighbor_vertices, …) is dewall's, copied
+    writable (scipy's Cython code takes writable buffers); no Qhull run. Its methods
+    (find_simplex, …) are scipy's, running on dewall's simplices. Needs scipy."""
     from scipy.spatial import Delaunay as ScipyDelaunay
 
     class DewallAsScipy(ScipyDelaunay):
@@ -161,7 +168,7 @@ def _as_scipy_delaunay(tri):
         convex_hull = property(lambda self: self._convex_hull)
 
         def __init__(self):  # never called: instances come from object.__new__ below
-            raise TypeError("use dewall.interpolate._as_scipy_delaunay")
+            raise TypeError("use dewall.interpolate.as_scipy_delaunay")
 
     view = object.__new__(DewallAsScipy)
     view._qhull = None
@@ -196,7 +203,7 @@ def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxi
         if rescale:  # scipy rescales before triangulating: triangulate the same rescaled points
             offset, scale = _rescaling(points)
             tri = Delaunay((points - offset) / scale)
-            interpolator = ScipyCloughTocher(_as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol,
+            interpolator = ScipyCloughTocher(as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol,
                                              maxiter=maxiter)
             interpolator.offset, interpolator.scale = offset, scale
             interpolator.rescale = True
@@ -204,7 +211,7 @@ def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxi
         tri = Delaunay(points)
     if tri.ndim != 2:
         raise ValueError(f"CloughTocher2DInterpolator is 2-D only, not {tri.ndim}-D")
-    return ScipyCloughTocher(_as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol, maxiter=maxiter)
+    return ScipyCloughTocher(as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol, maxiter=maxiter)
 
 
 def NearestNDInterpolator(x, y, rescale=False, tree_options=None):

@@ -78,3 +78,15 @@ def test_every_query_inside_a_grid_gets_a_value(k, d, rng):
     if d == 2:
         cubic = di.griddata(points, values, queries, method="cubic")
         assert np.isfinite(cubic).all()
+
+
+def test_a_dewall_triangulation_handed_to_scipy(rng):
+    points = rng.random((200, 3))
+    values = np.sin(points).sum(axis=1)
+    tri = dewall.Delaunay(points)
+    view = di.as_scipy_delaunay(tri)
+    queries = rng.random((300, 3))
+    np.testing.assert_allclose(si.LinearNDInterpolator(view, values)(queries),
+                               di.LinearNDInterpolator(tri, values)(queries), atol=1e-12)
+    found = view.find_simplex(queries)  # scipy's walk on dewall's simplices
+    assert (found == tri.find_simplex(queries)).mean() > 0.99
