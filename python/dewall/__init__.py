@@ -14,12 +14,12 @@ Python section.
 
 from ._compiled import _dewall  # noqa: F401  (first: it finds the compiled module, or says how to build it)
 from ._certify import Certificate, Violation, certify
-from ._delaunay import Delaunay
+from ._delaunay import Delaunay, tsearch
 from ._errors import DegenerateInput, InvalidInput, InvalidOption, QhullError
 from ._generate import KINDS, generate
 from ._hull import ConvexHull, Voronoi
 from . import interpolate
 
 __all__ = ["Delaunay", "ConvexHull", "Voronoi", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput",
-           "DegenerateInput", "InvalidOption", "QhullError", "interpolate"]
+           "DegenerateInput", "InvalidOption", "QhullError", "interpolate", "tsearch"]
 __version__ = "0.1.0"

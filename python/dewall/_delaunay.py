@@ -441,6 +441,11 @@ class Delaunay:
         return f"<dewall.Delaunay: {self.npoints} points in E^{self.ndim}, {self.nsimplex} simplices>"
 
 
+def tsearch(tri, xi):
+    """scipy.spatial.tsearch: the simplex of `tri` containing each point of xi (tri.find_simplex(xi))."""
+    return tri.find_simplex(xi)
+
+
 def _morton_order(x, low, high, bits=10):
     """The permutation sorting the rows of x along a Z-order curve over the box [low, high]
     (2^bits cells per axis; rows outside the box or non-finite go to its faces). Only the

@@ -99,6 +99,7 @@ def test_find_simplex_square():  # TestUtilities.test_find_simplex, as vertex se
     assert simplex_set(tri.simplices) == {(1, 2, 3), (0, 1, 3)}  # scipy pins [[1, 3, 2], [3, 1, 0]]
     for x, y, vertices in [(0.25, 0.25, {0, 1, 3}), (0.75, 0.75, {1, 2, 3}), (0.3, 0.2, {0, 1, 3})]:
         assert set(tri.simplices[tri.find_simplex((x, y))]) == vertices
+        assert dewall.tsearch(tri, (x, y)) == tri.find_simplex((x, y))
 
 
 def test_plane_distance_by_hand():  # TestUtilities.test_plane_distance
