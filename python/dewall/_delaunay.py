@@ -276,7 +276,8 @@ class Delaunay:
     def paraboloid_scale(self):
         """Qhull's scale of the lifted coordinate (as scipy's, option Qbb): the largest |coordinate|
         divided by the range of the lifted values (sum of squares, up to 1.1 times their maximum
-        for Qhull's point at infinity, option Qz, which scipy's incremental mode omits)."""
+        for Qhull's point at infinity, option Qz). 1 in incremental mode, where scipy's Qhull
+        does not scale (and shift 0)."""
         return self._paraboloid[0]
 
     @property
@@ -288,8 +289,10 @@ class Delaunay:
     @property
     def _paraboloid(self):
         def compute():
+            if self._incremental:
+                return 1.0, 0.0
             squares = np.einsum("ij,ij->i", self.points, self.points)
-            low, high = squares.min(), squares.max() * (1.0 if self._incremental else 1.1)
+            low, high = squares.min(), squares.max() * 1.1
             largest = np.abs(self.points).max()
             if not high > low or not largest > 0:
                 return 1.0, 0.0

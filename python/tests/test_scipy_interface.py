@@ -192,6 +192,11 @@ def test_incremental_bug_2850(rng):  # TestDelaunay.test_incremental, datasets b
     expected = simplex_set(ScipyDelaunay(points).simplices)
     assert simplex_set(grown.simplices) == simplex_set(restarted.simplices) == expected
     np.testing.assert_array_equal(grown.points, points)
+    scipys = ScipyDelaunay(chunks[0], incremental=True)
+    scipys.add_points(np.concatenate(chunks[1:]))
+    assert (grown.paraboloid_scale, grown.paraboloid_shift) == (scipys.paraboloid_scale, scipys.paraboloid_shift)
+    rows = scipy_rows(grown, scipys)
+    np.testing.assert_allclose(grown.equations, scipys.equations[rows], atol=1e-11)
     np.testing.assert_array_equal(grown.max_bound, points.max(axis=0))
     assert grown.find_simplex([0.9, 0.95]) >= 0
     grown.close()
