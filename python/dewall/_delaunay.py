@@ -321,8 +321,7 @@ class Delaunay:
             d = self.ndim
             normal = np.empty((self.nsimplex, d + 1))
             for k in range(d + 1):  # cofactor expansion: the normal orthogonal to every edge
-                minor = np.delete(edges, k, axis=2)
-                normal[:, k] = (-1) ** k * np.linalg.det(minor)
+                normal[:, k] = (-1) ** k * _determinants(np.delete(edges, k, axis=2))
             normal *= -np.sign(normal[:, d:])  # lower hull: last component negative
             normal /= np.linalg.norm(normal, axis=1, keepdims=True)
             offset = -np.einsum("ij,ij->i", normal, lifted[:, 0, :])
@@ -473,6 +472,19 @@ def barycentric(transform, x):
     """Barycentric coordinates (..., ndim + 1) of x (..., ndim) under scipy-layout transforms (..., ndim + 1, ndim)."""
     c = np.einsum("...ij,...j->...i", transform[..., :-1, :], x - transform[..., -1, :])
     return np.concatenate((c, 1 - c.sum(axis=-1, keepdims=True)), axis=-1)
+
+
+def _determinants(a):
+    """Determinants of a stack of small matrices (m, d, d): written out in 2-D and 3-D (where
+    batched LAPACK costs a call per matrix), by LU beyond."""
+    d = a.shape[1]
+    if d == 2:
+        return a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
+    if d == 3:
+        return (a[:, 0, 0] * (a[:, 1, 1] * a[:, 2, 2] - a[:, 1, 2] * a[:, 2, 1])
+                - a[:, 0, 1] * (a[:, 1, 0] * a[:, 2, 2] - a[:, 1, 2] * a[:, 2, 0])
+                + a[:, 0, 2] * (a[:, 1, 0] * a[:, 2, 1] - a[:, 1, 1] * a[:, 2, 0]))
+    return np.linalg.det(a)
 
 
 def _inverse_and_determinant(e):

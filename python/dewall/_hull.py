@@ -9,7 +9,7 @@ point from the points.
 
 import numpy as np
 
-from ._delaunay import Delaunay, _check_qhull_options
+from ._delaunay import Delaunay, _check_qhull_options, _determinants
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -78,7 +78,7 @@ class ConvexHull(_FromDelaunay):
         self.vertices = self._ordered_vertices()
         corners = self.points[self.simplices]  # (m, d, d)
         edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
-        normal = np.stack([(-1) ** k * np.linalg.det(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
+        normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
         inner = self.points[tri.simplices[simplex, opposite]]  # a point inside: the simplex's other vertex
         normal *= np.where(np.einsum("ij,ij->i", normal, inner - corners[:, 0, :]) > 0, -1.0, 1.0)[:, None]
         length = np.linalg.norm(normal, axis=1)
@@ -87,7 +87,7 @@ class ConvexHull(_FromDelaunay):
         factorial = float(np.prod(np.arange(1, d + 1)))
         self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure
         full = self.points[tri.simplices]
-        self.volume = float(np.abs(np.linalg.det(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
+        self.volume = float(np.abs(_determinants(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
         on_hull = np.zeros(self.npoints, dtype=bool)
         on_hull[self.simplices] = True
         dup = tri.duplicates
