@@ -122,3 +122,15 @@ def test_ridges_separate_nearest_neighbours(d, rng):  # TestVoronoi.test_ridges
         middle = vor.vertices[v].mean(axis=0)
         step = 1e-6 * (points[p] - middle)
         assert tree.query(middle + step)[1] == p and tree.query(middle - step)[1] == q
+
+
+def test_cospherical_points_give_one_vertex():
+    import itertools
+
+    corners = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
+    for points in (corners, np.vstack((corners, [[0.5, 0.5, 0.5]]))):
+        ours, theirs = dewall.Voronoi(points), ss.Voronoi(points)
+        assert ours.vertices.shape == theirs.vertices.shape  # 1, then 6: one per cospherical cell
+        np.testing.assert_allclose(np.sort(ours.vertices, axis=0), np.sort(theirs.vertices, axis=0), atol=1e-12)
+        assert simplex_set(ours.ridge_points) == simplex_set(theirs.ridge_points)  # none, then 20
+    assert dewall.Voronoi(corners).regions[:8] == [[-1, 0]] * 8
