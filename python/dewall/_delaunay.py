@@ -390,7 +390,8 @@ class Delaunay:
         if candidates.size == 0:
             return
         hull = self._hull_simplices
-        transform = self.transform[hull]
+        cached = self.__dict__.get("transform")  # else only the hull's: a few of the simplices
+        transform = cached[hull] if cached is not None else barycentric_transforms(self.points, self.simplices[hull])
         valid = np.isfinite(transform[:, 0, 0])
         hull, transform = hull[valid], transform[valid]
         if hull.size == 0:
