@@ -14,6 +14,7 @@ import numpy as np
 from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
+from ._furthest_site import furthest_site_simplices
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
 # reciprocal condition number under which a barycentric transform is NaN.
@@ -86,9 +87,12 @@ class Delaunay:
         place, not copied (so do not change it while this object is in use);
         other real arrays are converted exactly (dewall._arrays); masked
         arrays are refused (ValueError), as scipy does.
-    furthest_site: scipy's; True raises NotImplementedError (the furthest-site
-        triangulation needs the upper hull of the lifted points, which the
-        library does not compute yet).
+    furthest_site: scipy's: the furthest-site Delaunay triangulation (the
+        upper hull of the lifted points: each simplex's circumsphere contains
+        every point), exact, by gift wrapping over the hull vertices with the
+        library's predicates (dewall/_furthest_site.py). Ties (cospherical or
+        coplanar hull vertices) raise NotImplementedError: no consistent
+        perturbation for it yet.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).
@@ -132,10 +136,7 @@ class Delaunay:
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
                  threads=None):
         _refuse_masked(points, "Input points")
-        if furthest_site:
-            raise NotImplementedError("furthest_site=True: dewall does not compute furthest-site Delaunay "
-                                      "triangulations (the upper hull of the lifted points) yet")
-        self.furthest_site = False
+        self.furthest_site = bool(furthest_site)
         self._qhull_options = _check_qhull_options(qhull_options)
         self._engine = str(engine)
         self._threads = _check_threads(threads)
@@ -148,6 +149,10 @@ class Delaunay:
         self._statistics = None
         self.points = points
         self._triangulation = _triangulate(points, self._engine, self._threads)
+        if self.furthest_site:
+            self._statistics = self._triangulation.statistics
+            self._triangulation = _dewall.from_simplices(points, furthest_site_simplices(
+                points, _hull_facets(self._triangulation.simplices(), self._triangulation.neighbors())).astype(np.uint32))
         self._set_bounds()
 
     def _set_bounds(self):
@@ -196,13 +201,7 @@ class Delaunay:
         """int32 array (nfacets, ndim): the facets of the convex hull, each as the simplex
         facet it is (simplices[i] without its vertex j where neighbors[i, j] == -1)."""
 
-        def compute():
-            simplex, opposite = np.nonzero(self.neighbors == -1)
-            keep = np.ones((simplex.size, self.ndim + 1), dtype=bool)
-            keep[np.arange(simplex.size), opposite] = False
-            return self.simplices[simplex][keep].reshape(simplex.size, self.ndim)
-
-        return self._lazy("convex_hull", compute)
+        return self._lazy("convex_hull", lambda: _hull_facets(self.simplices, self.neighbors))
 
     @property
     def duplicates(self):
@@ -226,14 +225,16 @@ class Delaunay:
 
         def compute():
             dup = self.duplicates
-            return np.column_stack((dup[:, 0], self.vertex_to_simplex[dup[:, 1]], dup[:, 1])).astype(np.int32)
+            rows = np.column_stack((dup[:, 0], self.vertex_to_simplex[dup[:, 1]], dup[:, 1])).astype(np.int32)
+            return rows[rows[:, 1] >= 0]  # furthest site: copies of points inside the hull are no vertices
 
         return self._lazy("coplanar", compute)
 
     @property
     def vertex_to_simplex(self):
         """int32 array (npoints,): a simplex having each point as a vertex; a duplicate point
-        gets a simplex of the vertex that stands for it (so every entry is >= 0)."""
+        gets a simplex of the vertex that stands for it (so every entry is >= 0, except with
+        furthest_site=True, where points inside the hull are no vertices: -1)."""
 
         def compute():
             out = np.full(self.npoints, -1, dtype=np.int32)
@@ -276,8 +277,8 @@ class Delaunay:
     def paraboloid_scale(self):
         """Qhull's scale of the lifted coordinate (as scipy's, option Qbb): the largest |coordinate|
         divided by the range of the lifted values (sum of squares, up to 1.1 times their maximum
-        for Qhull's point at infinity, option Qz). 1 in incremental mode, where scipy's Qhull
-        does not scale (and shift 0)."""
+        for Qhull's point at infinity, option Qz, which scipy leaves out for furthest_site). 1 in
+        incremental mode, where scipy's Qhull does not scale (and shift 0)."""
         return self._paraboloid[0]
 
     @property
@@ -292,7 +293,7 @@ class Delaunay:
             if self._incremental:
                 return 1.0, 0.0
             squares = np.einsum("ij,ij->i", self.points, self.points)
-            low, high = squares.min(), squares.max() * 1.1
+            low, high = squares.min(), squares.max() * (1.0 if self.furthest_site else 1.1)
             largest = np.abs(self.points).max()
             if not high > low or not largest > 0:
                 return 1.0, 0.0
@@ -322,7 +323,8 @@ class Delaunay:
             normal = np.empty((self.nsimplex, d + 1))
             for k in range(d + 1):  # cofactor expansion: the normal orthogonal to every edge
                 normal[:, k] = (-1) ** k * _determinants(np.delete(edges, k, axis=2))
-            normal *= -np.sign(normal[:, d:])  # lower hull: last component negative
+            # lower hull: last component negative; furthest site (upper hull): positive
+            normal *= (1 if self.furthest_site else -1) * np.sign(normal[:, d:])
             normal /= np.linalg.norm(normal, axis=1, keepdims=True)
             offset = -np.einsum("ij,ij->i", normal, lifted[:, 0, :])
             return np.column_stack((normal, offset))
@@ -427,12 +429,13 @@ class Delaunay:
     # ---- pickling ------------------------------------------------------------------------------
 
     def __getstate__(self):
-        return {"points": self.points, "simplices": np.array(self.simplices), "engine": self._engine,
+        return {"points": self.points, "simplices": np.array(self.simplices), "furthest_site": self.furthest_site,
+                "engine": self._engine,
                 "threads": self._threads, "incremental": self._incremental, "closed": self._closed,
                 "qhull_options": self._qhull_options, "statistics": self.statistics}
 
     def __setstate__(self, state):
-        self.furthest_site = False
+        self.furthest_site = state["furthest_site"]
         self._engine, self._threads = state["engine"], state["threads"]
         self._incremental, self._closed = state["incremental"], state["closed"]
         self._qhull_options, self._statistics = state["qhull_options"], state["statistics"]
@@ -442,6 +445,14 @@ class Delaunay:
 
     def __repr__(self):
         return f"<dewall.Delaunay: {self.npoints} points in E^{self.ndim}, {self.nsimplex} simplices>"
+
+
+def _hull_facets(simplices, neighbors):
+    """The facets simplices[i] without vertex j where neighbors[i, j] == -1, (k, d) int32."""
+    simplex, opposite = np.nonzero(neighbors == -1)
+    keep = np.ones((simplex.size, simplices.shape[1]), dtype=bool)
+    keep[np.arange(simplex.size), opposite] = False
+    return simplices[simplex][keep].reshape(simplex.size, simplices.shape[1] - 1)
 
 
 def tsearch(tri, xi):

@@ -295,6 +295,45 @@ std::unique_ptr<Triangulation> from_simplices(py::handle points_in, py::handle s
   });
 }
 
+/// The exact predicates on rows of point indices, for constructions the
+/// Python layer makes from them (furthest-site triangulations): orientation of
+/// each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]), or with
+/// `sphere`, the unperturbed side of the last of D + 2 indices with respect to
+/// the circumsphere of the first D + 1 (+1 inside, 0 on, -1 outside; the
+/// simplex must be positively oriented). Exact, never perturbed.
+py::array predicate_signs(py::handle points_in, py::handle rows_in, bool sphere) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array rows = checked(rows_in, uint32, sphere ? d + 2 : d + 1, "rows");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto* index = static_cast<const std::uint32_t*>(rows.data());
+  const auto count = static_cast<std::size_t>(rows.shape(0));
+  const auto width = static_cast<std::size_t>(rows.shape(1));
+  for (std::size_t i = 0; i < count * width; ++i)
+    if (index[i] >= n) throw py::value_error("rows: index " + std::to_string(index[i]) + " is not a point index");
+  py::array_t<std::int8_t> out(static_cast<py::ssize_t>(count));
+  std::int8_t* sign = out.mutable_data();
+  dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    const auto p = as_points<D>(points);
+    const Kernel<D> k;
+    py::gil_scoped_release release;
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::uint32_t* row = index + r * width;
+      if (sphere) {
+        std::array<const Point_d<D>*, D + 2> s;
+        for (std::size_t j = 0; j < std::size_t{D} + 2; ++j) s[j] = &p[row[j]];
+        sign[r] = static_cast<std::int8_t>(k.side_of_oriented_sphere_unperturbed_d_object()(s));
+      } else {
+        std::array<const Point_d<D>*, D + 1> s;
+        for (std::size_t j = 0; j < std::size_t{D} + 1; ++j) s[j] = &p[row[j]];
+        sign[r] = static_cast<std::int8_t>(k.orientation_d_object()(s));
+      }
+    }
+  });
+  return out;
+}
+
 py::dict violation_dict(const dewall::certify::Violation& v) {
   const auto index = [](std::size_t i) -> py::object {
     return i == dewall::certify::npos ? py::object(py::none()) : py::object(py::int_(i));
@@ -385,6 +424,7 @@ PYBIND11_MODULE(_dewall, m) {
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
+  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("sphere"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

@@ -214,8 +214,8 @@ def test_scipys_positional_signature(rng):
     assert simplex_set(dewall.Delaunay(points, False, False, "Qbb Qc Qz Q12").simplices) == \
         simplex_set(dewall.Delaunay(points).simplices)
     assert dewall.Delaunay(points).furthest_site is False
-    with pytest.raises(NotImplementedError, match="furthest-site"):
-        dewall.Delaunay(points, True)
+    assert simplex_set(dewall.Delaunay(points, True).simplices) == \
+        simplex_set(ScipyDelaunay(points, True).simplices)  # furthest_site, positionally
     with pytest.raises(TypeError):
         dewall.Delaunay(points, False, False, None, "cgal")  # engine and threads are keyword-only
 
@@ -338,3 +338,38 @@ def test_more_barycentric_transforms(ndim, k):  # TestUtilities.test_more_baryce
     doubled = dewall.Delaunay(np.r_[grid, grid])
     check_barycentric_transforms(doubled, unit_cube=True, unit_cube_tol=2 * eps)
     assert len(doubled.coplanar) == len(grid)
+
+
+# ---- furthest site -------------------------------------------------------------------------------
+
+
+def test_furthest_site_scipys_case():  # TestDelaunay.test_furthest_site, as sets
+    tri = dewall.Delaunay([(0, 0), (0, 1), (1, 0), (0.5, 0.5), (1.1, 1.1)], furthest_site=True)
+    assert tri.furthest_site is True
+    assert simplex_set(tri.simplices) == {(0, 1, 4), (0, 2, 4)}  # scipy (Qhull): [(1, 4, 0), (4, 2, 0)]
+    assert tri.vertex_to_simplex[3] == -1 and tri.find_simplex((0.5, 0.5)) >= 0
+
+
+@pytest.mark.parametrize("d, n", [(2, 200), (3, 100), (4, 40)])
+def test_furthest_site_equals_scipy(d, n, rng):
+    points = rng.random((n, d))
+    ours, theirs = dewall.Delaunay(points, True), ScipyDelaunay(points, True)
+    assert simplex_set(ours.simplices) == simplex_set(theirs.simplices)
+    assert (ours.paraboloid_scale, ours.paraboloid_shift) == pytest.approx(
+        (theirs.paraboloid_scale, theirs.paraboloid_shift), rel=1e-14, abs=1e-15)
+    np.testing.assert_allclose(ours.equations, theirs.equations[scipy_rows(ours, theirs)], atol=1e-11)
+    assert (ours.equations[:, d] > 0).all()  # the upper hull
+    queries = rng.random((300, d))
+    mine, scipys = ours.find_simplex(queries), theirs.find_simplex(queries)
+    assert ((mine == -1) == (scipys == -1)).all()
+    assert all(set(ours.simplices[a]) == set(theirs.simplices[b]) for a, b in zip(mine, scipys) if a >= 0)
+    # every circumsphere contains every point: no lifted point above a simplex's plane
+    assert (ours.plane_distance(points) <= 1e-12).all()
+    again = pickle.loads(pickle.dumps(ours))
+    assert again.furthest_site and simplex_set(again.simplices) == simplex_set(ours.simplices)
+
+
+def test_furthest_site_ties_are_refused():
+    square_and_inside = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [0.5, 0.4]])  # 4 cocircular hull vertices
+    with pytest.raises(NotImplementedError, match="not in general position"):
+        dewall.Delaunay(square_and_inside, furthest_site=True)

@@ -1,0 +1,100 @@
+"""The furthest-site Delaunay triangulation, exactly, for hull vertices in general position.
+
+Its simplices are the upper hull of the points lifted to the paraboloid: the
+simplices whose circumsphere contains every point. Only hull vertices take part
+(a sphere containing them contains their convex hull), so the construction
+works on those: gift wrapping (as for the Delaunay triangulation, with the
+sphere test reversed), every decision an exact predicate of the library
+(_dewall.predicate_signs: orientation, unperturbed in-sphere).
+
+1. Start from a hull facet (the Delaunay triangulation's): its neighbour inside
+   is the first simplex.
+2. Pivot across a ridge R: among the hull vertices strictly beyond R (opposite
+   the simplex's apex), the spheres through R form a pencil, nested on that
+   side; take any candidate b, and while some candidate lies outside the sphere
+   through R + b, move b to it. The last sphere contains every candidate; it
+   contains the points on the apex side because the sphere of the simplex we
+   came from contains them and, on that side, the new sphere lies inside it.
+3. Repeat for every ridge not yet matched (breadth first); a ridge with no
+   candidate is a hull facet.
+
+Ties (a hull vertex on a sphere or on a ridge's hyperplane: cospherical or
+coplanar hull vertices) need a consistent perturbation, which is not written
+yet: they raise NotImplementedError rather than returning a guess.
+"""
+
+from collections import deque
+
+import numpy as np
+
+from . import _dewall
+
+_DEGENERATE = ("furthest_site=True: the hull vertices are not in general position ({}); dewall computes "
+               "furthest-site triangulations exactly only without such ties (no consistent perturbation yet)")
+
+
+def furthest_site_simplices(points, hull_facets):
+    """The furthest-site Delaunay simplices (int32, each positively oriented) of `points`, whose
+    convex hull facets are `hull_facets` (rows of d point indices)."""
+    d = points.shape[1]
+    vertices = np.unique(hull_facets).astype(np.uint32)
+
+    def orientation(rows):
+        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), False)
+
+    def in_sphere(rows):
+        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), True)
+
+    def positive(simplex):
+        simplex = list(simplex)
+        if orientation([simplex])[0] < 0:
+            simplex[0], simplex[1] = simplex[1], simplex[0]
+        return simplex
+
+    def pivot(ridge, apex_side):
+        """The vertex completing `ridge` beyond it (the side of sign -apex_side), or None."""
+        others = vertices[~np.isin(vertices, ridge)]
+        sides = orientation(np.column_stack([np.tile(ridge, (others.size, 1)), others]))
+        if (sides == 0).any():
+            raise NotImplementedError(_DEGENERATE.format("a hull vertex in the hyperplane of a ridge"))
+        candidates = others[sides == -apex_side]
+        if candidates.size == 0:
+            return None
+        best = candidates[0]
+        while True:
+            simplex = positive(list(ridge) + [best])
+            rest = candidates[candidates != best]
+            if rest.size == 0:
+                return best
+            signs = in_sphere(np.column_stack([np.tile(simplex, (rest.size, 1)), rest]))
+            if (signs == 0).any():
+                raise NotImplementedError(_DEGENERATE.format("d + 2 hull vertices on one sphere"))
+            outside = rest[signs < 0]
+            if outside.size == 0:
+                return best
+            best = outside[0]
+
+    start = [int(v) for v in hull_facets[0]]
+    side = orientation(np.column_stack([np.tile(start, (vertices.size, 1)), vertices]))
+    inner = int(side[side != 0][0])  # every hull vertex is on one side of a hull facet
+    first = pivot(start, -inner)
+    simplices = {tuple(sorted(start + [int(first)]))}
+    queue = deque(simplices)
+    matched = set()
+    while queue:
+        simplex = queue.popleft()
+        for j in range(d + 1):
+            ridge = simplex[:j] + simplex[j + 1:]
+            if ridge in matched:
+                continue
+            matched.add(ridge)
+            apex = simplex[j]
+            apex_side = int(orientation([list(ridge) + [apex]])[0])
+            found = pivot(list(ridge), apex_side)
+            if found is None:
+                continue
+            neighbour = tuple(sorted(ridge + (int(found),)))
+            if neighbour not in simplices:
+                simplices.add(neighbour)
+                queue.append(neighbour)
+    return np.array([positive(s) for s in sorted(simplices)], dtype=np.int32).reshape(-1, d + 1)
