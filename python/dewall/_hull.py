@@ -17,16 +17,17 @@ __all__ = ["ConvexHull", "Voronoi"]
 class _FromDelaunay:
     """Construction, incremental mode and bounds shared by ConvexHull and Voronoi."""
 
-    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None):
+    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None,
+                 furthest_site=False):
         _check_qhull_options(qhull_options)
-        self._tri = Delaunay(points, incremental=incremental, engine=engine, threads=threads)
+        self._tri = Delaunay(points, furthest_site, incremental, engine=engine, threads=threads)
         self._update()
 
     def _update(self):
         tri = self._tri
         self.points, self.ndim, self.npoints = tri.points, tri.ndim, tri.npoints
         self.min_bound, self.max_bound = tri.min_bound, tri.max_bound
-        self.furthest_site = False
+        self.furthest_site = tri.furthest_site
         self._compute()
 
     def add_points(self, points, restart=False):
@@ -133,15 +134,15 @@ class Voronoi(_FromDelaunay):
     cospherical cell, whose dual collapsed, are not ridges. Regions: one per distinct input
     point (the circumcentres around it, -1 when the region is unbounded; in 2-D in
     counterclockwise order, in 3-D ridges in cyclic order), then an empty one, as Qhull's
-    output has; a duplicate point shares its first occurrence's region. furthest_site=True
-    raises NotImplementedError.
+    output has; a duplicate point shares its first occurrence's region. furthest_site=True:
+    the furthest-site diagram, from Delaunay(furthest_site=True) (same rules: exact, ties
+    raise NotImplementedError); points inside the hull get an empty region.
     """
 
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
                  threads=None):
-        if furthest_site:
-            raise NotImplementedError("furthest_site=True: dewall does not compute furthest-site diagrams yet")
-        super().__init__(points, incremental, qhull_options, engine=engine, threads=threads)
+        super().__init__(points, incremental, qhull_options, engine=engine, threads=threads,
+                         furthest_site=furthest_site)
 
     def _compute(self):
         tri = self._tri
@@ -184,7 +185,9 @@ class Voronoi(_FromDelaunay):
         for i in range(self.npoints):
             if first[i] != i:
                 continue
-            if d == 2:
+            if tri.vertex_to_simplex[i] < 0:  # furthest site: a point inside the hull has no region
+                region = []
+            elif d == 2:
                 region = self._counterclockwise(i)
             else:
                 region = list(dict.fromkeys(incident[i]))
@@ -193,7 +196,8 @@ class Voronoi(_FromDelaunay):
             self.point_region[i] = len(self.regions)
             self.regions.append(region)
         self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
-        self.regions.append([])
+        if not self.furthest_site:
+            self.regions.append([])  # Qhull's point at infinity (option Qz, not used for the furthest site)
 
     def _counterclockwise(self, site):
         """2-D: the Voronoi vertices around `site` counterclockwise, by walking the triangles

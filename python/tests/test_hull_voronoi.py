@@ -35,10 +35,11 @@ def test_convex_hull_equals_scipy(d, n, rng):
     assert (points @ ours.equations[:, :-1].T + ours.equations[:, -1] <= 1e-12).all()
 
 
-@pytest.mark.parametrize("d, n", [(2, 150), (3, 60), (4, 30)])
-def test_voronoi_equals_scipy(d, n, rng):
+@pytest.mark.parametrize("d, n, furthest", [(2, 150, False), (3, 60, False), (4, 30, False), (2, 100, True),
+                                             (3, 50, True)])
+def test_voronoi_equals_scipy(d, n, furthest, rng):
     points = rng.random((n, d))
-    ours, theirs = dewall.Voronoi(points), ss.Voronoi(points)
+    ours, theirs = dewall.Voronoi(points, furthest), ss.Voronoi(points, furthest)
     assert ours.vertices.shape == theirs.vertices.shape
     to_theirs = nearest_rows(theirs.vertices, ours.vertices)
 
@@ -47,7 +48,7 @@ def test_voronoi_equals_scipy(d, n, rng):
 
     assert ({tuple(sorted(p)): mapped(v) for p, v in zip(ours.ridge_points, ours.ridge_vertices)} ==
             {tuple(sorted(p)): frozenset(v) for p, v in zip(theirs.ridge_points, theirs.ridge_vertices)})
-    assert len(ours.regions) == len(theirs.regions) == n + 1 and ours.point_region.shape == (n,)
+    assert len(ours.regions) == len(theirs.regions) == n + (not furthest) and ours.point_region.shape == (n,)
     for i in range(n):
         assert mapped(ours.regions[ours.point_region[i]]) == frozenset(theirs.regions[theirs.point_region[i]])
     if d == 2:  # Qhull's cyclic order (in either direction: Qhull's turn either way), ours counterclockwise
@@ -107,8 +108,22 @@ def test_voronoi_simple_grid():  # TestVoronoi.test_simple, as sets (scipy pins 
                                               [2, -1], [-1, 3, 2], [-1, 3], []]}
     assert len(vor.ridge_points) == 12
     assert vor.furthest_site is False
-    with pytest.raises(NotImplementedError):
-        dewall.Voronoi(points, furthest_site=True)
+
+
+def test_voronoi_furthest_site():  # TestVoronoi.test_furthest_site, as sets; test_furthest_site_flag
+    points = [(0, 0), (0, 1), (1, 0), (0.5, 0.5), (1.1, 1.1)]
+    vor = dewall.Voronoi(points, furthest_site=True)
+    assert vor.furthest_site is True and dewall.Voronoi(points).furthest_site is False
+    expected = np.array([(0.6000000000000001, 0.5), (0.5, 0.6000000000000001)])  # qvoronoi Qu's output
+    to_expected = nearest_rows(expected, vor.vertices)
+
+    def mapped(vertices):
+        return tuple(sorted(-1 if v == -1 else int(to_expected[v]) for v in vertices))
+
+    assert [mapped(vor.regions[vor.point_region[i]]) for i in range(5)] == [(-1, 0, 1), (-1, 0), (-1, 1), (),
+                                                                            (-1, 0, 1)]
+    assert sorted((tuple(sorted(p)), mapped(v)) for p, v in zip(vor.ridge_points, vor.ridge_vertices)) == [
+        ((0, 1), (-1, 0)), ((0, 2), (-1, 1)), ((0, 4), (0, 1)), ((1, 4), (-1, 0)), ((2, 4), (-1, 1))]
 
 
 @pytest.mark.parametrize("d", [2, 3, 4])
