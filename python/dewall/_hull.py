@@ -161,12 +161,13 @@ class Voronoi(_FromDelaunay):
         for start, stop in zip(starts, np.r_[starts[1:], len(edges)]):
             p, q = map(int, edges[start])
             around = list(dict.fromkeys(int(g) for g in group[owner[start:stop]]))
-            if (p, q) in hull_edges:
+            unbounded = (p, q) in hull_edges
+            if unbounded:
                 around.insert(0, -1)
             if len(around) < d:
                 continue
             if d == 3:
-                around = self._cyclic(around, p, q)
+                around = self._around_edge(owner[start:stop], p, q, unbounded)
             ridge_points.append((p, q))
             ridge_vertices.append(around)
         self.ridge_points = np.array(ridge_points, dtype=np.int32).reshape(-1, 2)
@@ -225,15 +226,32 @@ class Voronoi(_FromDelaunay):
             walk.append(s)
         return list(dict.fromkeys(int(self._group[t]) for t in walk)) + ([-1] if s == -1 else [])
 
-    def _cyclic(self, around, p, q):
-        """3-D: the ridge's finite vertices in cyclic order around the edge pq (-1 first if any)."""
-        finite = [v for v in around if v >= 0]
-        axis = self.points[q] - self.points[p]
-        u = np.cross(axis, [1.0, 0, 0] if abs(axis[0]) < 0.9 * np.linalg.norm(axis) else [0, 1.0, 0])
-        w = np.cross(axis, u)
-        rel = self.vertices[finite] - self.points[p]
-        order = [finite[k] for k in np.argsort(np.arctan2(rel @ w, rel @ u))]
-        return ([-1] if len(finite) < len(around) else []) + order
+    def _around_edge(self, tets, p, q, unbounded):
+        """3-D: the Voronoi vertices of the tetrahedra `tets` around the edge pq in cyclic order, by
+        walking from tetrahedron to tetrahedron across their facets through pq (topology, not
+        angles); an unbounded ridge starts with -1 and walks from one hull facet to the other."""
+        tri = self._tri
+        simplices, neighbors = tri.simplices, tri.neighbors
+
+        def across(s, previous):  # the tetrahedra through pq next to s, other than `previous`
+            row = list(simplices[s])
+            return [int(neighbors[s, k]) for k in range(4) if row[k] not in (p, q)
+                    and int(neighbors[s, k]) != previous]
+
+        start = int(tets[0])
+        if unbounded:  # start at a tetrahedron with a hull facet through pq
+            start = next(int(s) for s in tets if -1 in across(int(s), None))
+        walk, previous, s = [start], -2, start
+        while True:
+            options = [t for t in across(s, previous) if t != -1]
+            if not options or options[0] == start:
+                break
+            previous, s = s, options[0]
+            walk.append(s)
+            if len(walk) > len(tets):
+                break
+        order = list(dict.fromkeys(int(self._group[t]) for t in walk))
+        return ([-1] if unbounded else []) + order
 
     @property
     def ridge_dict(self):

@@ -151,3 +151,38 @@ def test_cospherical_points_give_one_vertex():
         np.testing.assert_allclose(np.sort(ours.vertices, axis=0), np.sort(theirs.vertices, axis=0), atol=1e-12)
         assert simplex_set(ours.ridge_points) == simplex_set(theirs.ridge_points)  # none, then 20
     assert dewall.Voronoi(corners).regions[:8] == [[-1, 0]] * 8
+
+
+@pytest.mark.parametrize("n, ndim", [(50, 2), (100, 3)])
+def test_point_region_structure(n, ndim):  # TestVoronoi.test_point_region_structure (gh-16773), Qz variant
+    points = np.random.default_rng(7790).random((n, ndim))
+    vor = dewall.Voronoi(points)
+    # scipy asserts max() == n: Qhull's empty region (its point at infinity) lands among the others;
+    # dewall's is the last one, so max() == n - 1. What the case is about holds in both:
+    assert vor.point_region.max() == n - 1 and vor.point_region.size == len(vor.regions) - 1 == n
+    sizes = [len(r) for r in vor.regions]
+    assert sizes.count(0) == 1 and sizes.index(0) not in vor.point_region
+
+
+@pytest.mark.parametrize("d, n", [(2, 30), (3, 30), (4, 30), (5, 30), (6, 10)])
+def test_hull_consistency_tri(d, n, rng):  # TestConvexHull.test_hull_consistency_tri (random datasets)
+    points = rng.random((n, d))
+    hull = dewall.ConvexHull(points)
+    assert simplex_set(dewall.Delaunay(points).convex_hull) == simplex_set(hull.simplices)
+    assert simplex_set(hull.simplices) == simplex_set(ss.ConvexHull(points).simplices)
+    np.testing.assert_array_equal(np.unique(hull.simplices), np.sort(hull.vertices))
+
+
+def test_3d_ridges_in_cyclic_order(rng):
+    points = rng.random((60, 3))
+    vor = dewall.Voronoi(points)
+    for (p, q), ridge in vor.ridge_dict.items():
+        finite = vor.vertices[[v for v in ridge if v >= 0]]
+        if len(finite) < 3:
+            continue
+        # consecutive edges turn the same way around the edge pq: a convex polygon, in order
+        axis = points[q] - points[p]
+        m = len(finite)
+        turns = [np.dot(np.cross(finite[(k + 1) % m] - finite[k], finite[(k + 2) % m] - finite[(k + 1) % m]), axis)
+                 for k in range(m - (2 if -1 in ridge else 0))]
+        assert (np.array(turns) > 0).all() or (np.array(turns) < 0).all()
