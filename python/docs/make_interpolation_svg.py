@@ -4,7 +4,7 @@
 
 Three panels over the same 2,000 random points of the unit square, shifted by
 10^7 in x and y, and the same 24 x 24 queries: the function sin(6x)·y, scipy's
-griddata (Qhull triangulates the shifted points into about 20 triangles, drawn
+griddata (Qhull triangulates the shifted points into a few triangles (14), drawn
 in white) and dewall's. Plain SVG written here (matplotlib is not among the
 Debian packages the project installs). Seeded: the same picture every run.
 """

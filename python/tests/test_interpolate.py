@@ -93,7 +93,7 @@ def test_a_dewall_triangulation_handed_to_scipy(rng):
 
 
 def test_large_offset_keeps_the_interpolation_right(rng):
-    """2,000 points in a unit square offset by 10^7: Qhull's triangulation has about 20 triangles
+    """2,000 points in a unit square offset by 10^7: Qhull's triangulation has a few dozen triangles at most
     (max error 0.96 on these queries, measured with scipy 1.10), dewall's is the Delaunay one of
     the (rounded) points: the error stays that of the unshifted data."""
     points = rng.random((2000, 2))
