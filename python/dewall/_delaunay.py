@@ -90,9 +90,10 @@ class Delaunay:
     furthest_site: scipy's: the furthest-site Delaunay triangulation (the
         upper hull of the lifted points: each simplex's circumsphere contains
         every point), exact, by gift wrapping over the hull vertices with the
-        library's predicates (dewall/_furthest_site.py). Ties (cospherical or
-        coplanar hull vertices) raise NotImplementedError: no consistent
-        perturbation for it yet.
+        library's predicates (dewall/_furthest_site.py); cospherical hull
+        vertices resolved by the library's symbolic perturbation. Hull vertices
+        in a hull facet's hyperplane (a grid, a cube) raise
+        NotImplementedError: the hull is not perturbed for it yet.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).

@@ -1,4 +1,4 @@
-"""The furthest-site Delaunay triangulation, exactly, for hull vertices in general position.
+"""The furthest-site Delaunay triangulation, exactly (cospherical ties by the library's perturbation).
 
 Its simplices are the upper hull of the points lifted to the paraboloid: the
 simplices whose circumsphere contains every point. Only hull vertices take part
@@ -18,9 +18,20 @@ sphere test reversed), every decision an exact predicate of the library
 3. Repeat for every ridge not yet matched (breadth first); a ridge with no
    candidate is a hull facet.
 
-Ties (a hull vertex on a sphere or on a ridge's hyperplane: cospherical or
-coplanar hull vertices) need a consistent perturbation, which is not written
-yet: they raise NotImplementedError rather than returning a guess.
+Cost: O(h) exact tests per pivot step, for h hull vertices; a few steps per
+ridge on general input, up to O(h) on cospherical input. Meant for the hull
+sizes of ordinary inputs (tens to thousands of hull vertices), not for 10^5
+points on one sphere.
+
+Cospherical hull vertices (a square's corners, points on a circle) make the
+triangulation ambiguous; the pivot then uses the library's perturbed sphere
+test (CGAL's symbolic perturbation of the lifted points, the one the Delaunay
+triangulation uses), whose upper hull is unique, so the answer is one
+consistent triangulation, each circumsphere still containing every point (checked
+with the unperturbed test at the end). Hull vertices coplanar with a hull facet
+(a square's edge midpoint, a cube's faces, a grid) would need the perturbation of
+the hull itself as well: they raise NotImplementedError rather than returning a
+guess.
 """
 
 from collections import deque
@@ -29,8 +40,9 @@ import numpy as np
 
 from . import _dewall
 
-_DEGENERATE = ("furthest_site=True: the hull vertices are not in general position ({}); dewall computes "
-               "furthest-site triangulations exactly only without such ties (no consistent perturbation yet)")
+_COPLANAR = ("furthest_site=True: some convex hull facet has another hull vertex in its hyperplane (points "
+             "on a hull edge or face: a grid, a cube); dewall does not perturb the hull for the furthest-site "
+             "triangulation yet")
 
 
 def furthest_site_simplices(points, hull_facets):
@@ -39,11 +51,11 @@ def furthest_site_simplices(points, hull_facets):
     d = points.shape[1]
     vertices = np.unique(hull_facets).astype(np.uint32)
 
-    def orientation(rows):
-        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), False)
+    def signs(rows, kind):
+        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), kind)
 
-    def in_sphere(rows):
-        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), True)
+    def orientation(rows):
+        return signs(rows, 0)
 
     def positive(simplex):
         simplex = list(simplex)
@@ -51,13 +63,17 @@ def furthest_site_simplices(points, hull_facets):
             simplex[0], simplex[1] = simplex[1], simplex[0]
         return simplex
 
+    # Refuse hull vertices in a hull facet's hyperplane (see above).
+    for facet in hull_facets:
+        others = vertices[~np.isin(vertices, facet)]
+        if (orientation(np.column_stack([np.tile(facet, (others.size, 1)), others])) == 0).any():
+            raise NotImplementedError(_COPLANAR)
+
     def pivot(ridge, apex_side):
         """The vertex completing `ridge` beyond it (the side of sign -apex_side), or None."""
         others = vertices[~np.isin(vertices, ridge)]
         sides = orientation(np.column_stack([np.tile(ridge, (others.size, 1)), others]))
-        if (sides == 0).any():
-            raise NotImplementedError(_DEGENERATE.format("a hull vertex in the hyperplane of a ridge"))
-        candidates = others[sides == -apex_side]
+        candidates = others[sides == -apex_side]  # those in the ridge's hyperplane cannot complete it
         if candidates.size == 0:
             return None
         best = candidates[0]
@@ -66,10 +82,7 @@ def furthest_site_simplices(points, hull_facets):
             rest = candidates[candidates != best]
             if rest.size == 0:
                 return best
-            signs = in_sphere(np.column_stack([np.tile(simplex, (rest.size, 1)), rest]))
-            if (signs == 0).any():
-                raise NotImplementedError(_DEGENERATE.format("d + 2 hull vertices on one sphere"))
-            outside = rest[signs < 0]
+            outside = rest[signs(np.column_stack([np.tile(simplex, (rest.size, 1)), rest]), 2) < 0]
             if outside.size == 0:
                 return best
             best = outside[0]
@@ -97,4 +110,10 @@ def furthest_site_simplices(points, hull_facets):
             if neighbour not in simplices:
                 simplices.add(neighbour)
                 queue.append(neighbour)
-    return np.array([positive(s) for s in sorted(simplices)], dtype=np.int32).reshape(-1, d + 1)
+    result = np.array([positive(s) for s in sorted(simplices)], dtype=np.int32).reshape(-1, d + 1)
+    # The defining property, unperturbed: every circumsphere contains every hull vertex (inside or on).
+    for simplex in result:
+        others = vertices[~np.isin(vertices, simplex)]
+        if (signs(np.column_stack([np.tile(simplex, (others.size, 1)), others]), 1) < 0).any():
+            raise RuntimeError("dewall: the furthest-site construction failed its check (a bug: please report)")
+    return result

@@ -296,12 +296,15 @@ std::unique_ptr<Triangulation> from_simplices(py::handle points_in, py::handle s
 }
 
 /// The exact predicates on rows of point indices, for constructions the
-/// Python layer makes from them (furthest-site triangulations): orientation of
-/// each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]), or with
-/// `sphere`, the unperturbed side of the last of D + 2 indices with respect to
-/// the circumsphere of the first D + 1 (+1 inside, 0 on, -1 outside; the
-/// simplex must be positively oriented). Exact, never perturbed.
-py::array predicate_signs(py::handle points_in, py::handle rows_in, bool sphere) {
+/// Python layer makes from them (furthest-site triangulations). `kind` 0:
+/// orientation of each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]);
+/// 1: the side of the last of D + 2 indices with respect to the circumsphere of
+/// the first D + 1 (+1 inside, 0 on, -1 outside; the simplex must be
+/// positively oriented), unperturbed; 2: the same with CGAL's symbolic
+/// perturbation (never 0; the query must not be a vertex of the simplex).
+py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
+  if (kind < 0 || kind > 2) throw py::value_error("kind must be 0, 1 or 2");
+  const bool sphere = kind > 0;
   const py::array points = checked(points_in, float64, -1, "points");
   const long d = static_cast<long>(points.shape(1));
   const py::array rows = checked(rows_in, uint32, sphere ? d + 2 : d + 1, "rows");
@@ -323,7 +326,8 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, bool sphere)
       if (sphere) {
         std::array<const Point_d<D>*, D + 2> s;
         for (std::size_t j = 0; j < std::size_t{D} + 2; ++j) s[j] = &p[row[j]];
-        sign[r] = static_cast<std::int8_t>(k.side_of_oriented_sphere_unperturbed_d_object()(s));
+        sign[r] = static_cast<std::int8_t>(kind == 2 ? k.side_of_oriented_sphere_d_object()(s)
+                                                     : k.side_of_oriented_sphere_unperturbed_d_object()(s));
       } else {
         std::array<const Point_d<D>*, D + 1> s;
         for (std::size_t j = 0; j < std::size_t{D} + 1; ++j) s[j] = &p[row[j]];
@@ -424,7 +428,7 @@ PYBIND11_MODULE(_dewall, m) {
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
-  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("sphere"));
+  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

@@ -369,7 +369,21 @@ def test_furthest_site_equals_scipy(d, n, rng):
     assert again.furthest_site and simplex_set(again.simplices) == simplex_set(ours.simplices)
 
 
-def test_furthest_site_ties_are_refused():
-    square_and_inside = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [0.5, 0.4]])  # 4 cocircular hull vertices
-    with pytest.raises(NotImplementedError, match="not in general position"):
-        dewall.Delaunay(square_and_inside, furthest_site=True)
+def test_furthest_site_ties():
+    # cocircular hull vertices: one of the two triangulations, by the perturbation, each circle holding every point
+    square_and_inside = np.array([[0, 0], [1, 0], [0, 1], [1, 1], [0.5, 0.4]])
+    tri = dewall.Delaunay(square_and_inside, furthest_site=True)
+    assert tri.nsimplex == 2 and set(np.unique(tri.simplices)) == {0, 1, 2, 3}
+    assert (tri.plane_distance(square_and_inside) <= 1e-12).all()
+    angles = np.arange(12) * np.pi / 6  # a regular 12-gon (floating point: not exactly cocircular)
+    ring = np.column_stack((np.cos(angles), np.sin(angles)))
+    integer_ring = np.array([[5, 0], [4, 3], [3, 4], [0, 5], [-3, 4], [-4, 3], [-5, 0], [-4, -3], [-3, -4], [0, -5],
+                             [3, -4], [4, -3], [0, 1]], dtype=float)  # 12 exactly cocircular, one inside
+    for points in (ring, integer_ring):
+        tri = dewall.Delaunay(points, furthest_site=True)
+        area = np.abs(np.linalg.det(points[tri.simplices[:, 1:]] - points[tri.simplices[:, :1]])).sum() / 2
+        assert tri.nsimplex == 10 and area == pytest.approx(dewall.ConvexHull(points).volume, rel=1e-12)
+        assert (tri.find_simplex(points[:12] * 0.5) >= 0).all()
+    # a hull vertex in a hull facet's line: refused, not guessed
+    with pytest.raises(NotImplementedError, match="hyperplane"):
+        dewall.Delaunay(np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 3]]), furthest_site=True)
