@@ -20,6 +20,6 @@ from ._generate import KINDS, generate
 from ._hull import ConvexHull, Voronoi
 from . import interpolate
 
-__all__ = ["Delaunay", "ConvexHull", "Voronoi", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput",
-           "DegenerateInput", "InvalidOption", "QhullError", "interpolate", "tsearch"]
+__all__ = ["Delaunay", "ConvexHull", "Voronoi", "tsearch", "interpolate", "certify", "Certificate", "Violation",
+           "generate", "KINDS", "InvalidInput", "DegenerateInput", "InvalidOption", "QhullError"]
 __version__ = "0.1.0"

@@ -152,8 +152,8 @@ class Delaunay:
         self._triangulation = _triangulate(points, self._engine, self._threads)
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
-            self._triangulation = _dewall.from_simplices(points, furthest_site_simplices(
-                points, _hull_facets(self._triangulation.simplices(), self._triangulation.neighbors())).astype(np.uint32))
+            hull = _hull_facets(self._triangulation.simplices(), self._triangulation.neighbors())
+            self._triangulation = _dewall.from_simplices(points, furthest_site_simplices(points, hull).astype(np.uint32))
         self._set_bounds()
 
     def _set_bounds(self):
