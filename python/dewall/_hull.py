@@ -149,7 +149,41 @@ class Voronoi(_FromDelaunay):
         d, simplices = self.ndim, tri.simplices.astype(np.int64)
         group = self._group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
         self.vertices = _circumcentres(self.points, tri.simplices, group)
-        # Delaunay edges, and for each the Voronoi vertices of the simplices around it.
+        if d == 2:
+            self.ridge_points, self.ridge_vertices = self._ridges_2d(group)
+        else:
+            self.ridge_points, self.ridge_vertices = self._ridges(group, simplices)
+        # Regions: the vertices around each distinct point (first occurrences; [] for no vertex).
+        first = np.arange(self.npoints)
+        dup = tri.duplicates
+        first[dup[:, 0]] = dup[:, 1]
+        around = self._regions_2d(group) if d == 2 else self._regions(group)
+        self.regions, self.point_region = [], np.empty(self.npoints, dtype=np.intp)
+        for i in np.nonzero(first == np.arange(self.npoints))[0]:
+            self.point_region[i] = len(self.regions)
+            self.regions.append(around[i])
+        self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
+        if not self.furthest_site:
+            self.regions.append([])  # Qhull's point at infinity (option Qz, not used for the furthest site)
+
+    def _ridges_2d(self, group):
+        """2-D ridges, vectorised: each triangle edge with its two Voronoi vertices (the groups of
+        the triangles on either side, -1 first beyond the hull); none inside a cocircular cell."""
+        tri = self._tri
+        s, j = np.nonzero(np.ones(tri.neighbors.shape, dtype=bool))
+        n = tri.neighbors[s, j].astype(np.int64)
+        once = (n == -1) | (s < n)
+        s, j, n = s[once], j[once], n[once]
+        mine, theirs = group[s], np.where(n == -1, -1, group[np.maximum(n, 0)])
+        proper = mine != theirs
+        pairs = np.sort(np.column_stack((tri.simplices[s, (j + 1) % 3], tri.simplices[s, (j + 2) % 3])), axis=1)
+        pairs, vertices = pairs[proper], np.column_stack((theirs, mine))[proper]
+        order = np.lexsort((pairs[:, 1], pairs[:, 0]))
+        return pairs[order].astype(np.int32), vertices[order].tolist()
+
+    def _ridges(self, group, simplices):
+        """Ridges in 3-D and up: each Delaunay edge whose dual has at least d distinct vertices."""
+        tri, d = self._tri, self.ndim
         a, b = np.triu_indices(d + 1, 1)
         edges = np.sort(np.stack((simplices[:, a], simplices[:, b]), axis=2), axis=2).reshape(-1, 2)
         owner = np.repeat(np.arange(tri.nsimplex), a.size)
@@ -170,61 +204,60 @@ class Voronoi(_FromDelaunay):
                 around = self._around_edge(owner[start:stop], p, q, unbounded)
             ridge_points.append((p, q))
             ridge_vertices.append(around)
-        self.ridge_points = np.array(ridge_points, dtype=np.int32).reshape(-1, 2)
-        self.ridge_vertices = ridge_vertices
-        # Regions: the vertices around each distinct point.
-        first = np.arange(self.npoints)
-        dup = tri.duplicates
-        first[dup[:, 0]] = dup[:, 1]
+        return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
+
+    def _regions(self, group):
+        """Regions in 3-D and up: the groups of each point's simplices (ascending), -1 first on the hull."""
+        tri, d = self._tri, self.ndim
+        pairs = np.unique(np.column_stack((tri.simplices.ravel(), np.repeat(group, d + 1))), axis=0)
         on_hull = np.zeros(self.npoints, dtype=bool)
         on_hull[tri.convex_hull] = True
-        incident = [[] for _ in range(self.npoints)]
-        for s, row in enumerate(tri.simplices):
-            for v in row:
-                incident[v].append(int(group[s]))
-        self.regions, self.point_region = [], np.empty(self.npoints, dtype=np.intp)
-        for i in range(self.npoints):
-            if first[i] != i:
-                continue
-            if tri.vertex_to_simplex[i] < 0:  # furthest site: a point inside the hull has no region
-                region = []
-            elif d == 2:
-                region = self._counterclockwise(i)
-            else:
-                region = list(dict.fromkeys(incident[i]))
-            if d != 2 and on_hull[i]:
-                region.insert(0, -1)
-            self.point_region[i] = len(self.regions)
-            self.regions.append(region)
-        self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
-        if not self.furthest_site:
-            self.regions.append([])  # Qhull's point at infinity (option Qz, not used for the furthest site)
+        split = np.split(pairs[:, 1], np.cumsum(np.bincount(pairs[:, 0], minlength=self.npoints))[:-1])
+        return [([-1] if on_hull[i] else []) + part.tolist() if part.size else [] for i, part in enumerate(split)]
 
-    def _counterclockwise(self, site):
-        """2-D: the Voronoi vertices around `site` counterclockwise, by walking the triangles
-        around it (topology, not angles); an unbounded region starts at the triangle after the
-        hull and ends with -1."""
+    def _regions_2d(self, group):
+        """2-D regions counterclockwise, vectorised: the triangles around each point, in the order
+        of the walk across the edges through it (topology, not angles), by list ranking. An
+        unbounded region runs from the triangle after the hull to the one before it, then -1."""
         tri = self._tri
-        simplices, neighbors = tri.simplices, tri.neighbors
-        start = int(tri.vertex_to_simplex[site])
-
-        def step(s, turn):  # the next triangle around the site: turn 1 counterclockwise, 2 clockwise
-            k = list(simplices[s]).index(site)
-            return int(neighbors[s, (k + turn) % 3])
-
-        s = start
-        while True:  # clockwise to the hull, or once around
-            back = step(s, 2)
-            if back in (-1, start):
-                break
-            s = back
-        first, walk = s, [s]
-        while True:
-            s = step(s, 1)
-            if s in (-1, first):
-                break
-            walk.append(s)
-        return list(dict.fromkeys(int(self._group[t]) for t in walk)) + ([-1] if s == -1 else [])
+        simplices = tri.simplices.astype(np.int64)
+        m = simplices.shape[0]
+        incidence = np.arange(3 * m)
+        owner, position, vertex = incidence // 3, incidence % 3, simplices.ravel()
+        # the next triangle counterclockwise around `vertex`: across the edge (vertex, the one after next)
+        after = tri.neighbors[owner, (position + 1) % 3].astype(np.int64)
+        valid = after >= 0
+        where = np.argmax(simplices[np.maximum(after, 0)] == vertex[:, None], axis=1)
+        successor = np.where(valid, 3 * after + where, -1)
+        has_predecessor = np.zeros(3 * m, dtype=bool)
+        has_predecessor[successor[valid]] = True
+        chain = np.zeros(self.npoints, dtype=bool)  # a point on the hull: its triangles form a chain
+        chain[vertex[~has_predecessor]] = True
+        cycle = ~chain[vertex]
+        start = np.full(self.npoints, 3 * m)
+        np.minimum.at(start, vertex[cycle], incidence[cycle])
+        successor[cycle & (successor == start[vertex])] = -1  # open each cycle before its first triangle
+        # list ranking by pointer jumping: rank = steps to the end of the chain
+        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
+        while (pointer >= 0).any():
+            live = np.nonzero(pointer >= 0)[0]
+            target = pointer[live]
+            rank[live] += rank[target]
+            pointer[live] = pointer[target]
+        order = np.lexsort((-rank, vertex))
+        sites, groups = vertex[order], group[owner[order]]
+        new = np.r_[True, (sites[1:] != sites[:-1]) | (groups[1:] != groups[:-1])]  # merged cells: one vertex
+        sites, groups = sites[new], groups[new]
+        counts = np.bincount(sites, minlength=self.npoints)
+        regions = [part.tolist() for part in np.split(groups, np.cumsum(counts)[:-1])]
+        for i, region in enumerate(regions):
+            if not region:
+                continue
+            if chain[i]:
+                region.append(-1)
+            elif len(region) > 1 and region[0] == region[-1]:  # a merged cell met again at the wrap
+                region.pop()
+        return regions
 
     def _around_edge(self, tets, p, q, unbounded):
         """3-D: the Voronoi vertices of the tetrahedra `tets` around the edge pq in cyclic order, by
