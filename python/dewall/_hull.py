@@ -151,6 +151,8 @@ class Voronoi(_FromDelaunay):
         self.vertices = _circumcentres(self.points, tri.simplices, group)
         if d == 2:
             self.ridge_points, self.ridge_vertices = self._ridges_2d(group)
+        elif d == 3:
+            self.ridge_points, self.ridge_vertices = self._ridges_3d(group)
         else:
             self.ridge_points, self.ridge_vertices = self._ridges(group, simplices)
         # Regions: the vertices around each distinct point (first occurrences; [] for no vertex).
@@ -180,6 +182,64 @@ class Voronoi(_FromDelaunay):
         pairs, vertices = pairs[proper], np.column_stack((theirs, mine))[proper]
         order = np.lexsort((pairs[:, 1], pairs[:, 0]))
         return pairs[order].astype(np.int32), vertices[order].tolist()
+
+    def _ridges_3d(self, group):
+        """3-D ridges, vectorised: the tetrahedra around each edge in cyclic order (the walk across
+        the facets through the edge, always turning the same way, by list ranking), their groups
+        deduplicated, -1 first for a hull edge; kept when at least 3 distinct vertices remain."""
+        tri = self._tri
+        simplices = tri.simplices.astype(np.int64)
+        m = simplices.shape[0]
+        a, b = np.triu_indices(4, 1)  # the 6 edges of a tetrahedron, as positions (i, j), i < j
+        others = np.array([[k for k in range(4) if k not in (i, j)] for i, j in zip(a, b)])  # (6, 2)
+        # parity of the permutation (i, j, k, l) of (0, 1, 2, 3): the turning direction around i -> j
+        odd = np.array([(np.linalg.det(np.eye(4)[[i, j, k, l]]) < 0) for (i, j), (k, l) in zip(zip(a, b), others)])
+        owner = np.repeat(np.arange(m), 6)
+        slot = np.tile(np.arange(6), m)
+        p, q = simplices[owner, a[slot]], simplices[owner, b[slot]]
+        flip = p > q  # edges as (smaller, larger): the direction of p -> q flips the turn
+        # cross the facet opposite others[.., 0] or [.., 1]: the same turn in every tetrahedron
+        leave = others[slot, (odd[slot] ^ flip).astype(int)]
+        edge_key = np.minimum(p, q) * self.npoints + np.maximum(p, q)
+        keys, edge = np.unique(edge_key, return_inverse=True)
+        after = tri.neighbors[owner, leave].astype(np.int64)
+        valid = after >= 0
+        # the same edge's incidence in the next tetrahedron: its slot there
+        incidence = np.arange(6 * m)
+        order = np.lexsort((owner, edge))  # incidences sorted by (edge, owner): find (edge, after) by search
+        sorted_key = edge[order] * m + owner[order]
+        target = np.searchsorted(sorted_key, edge * m + np.maximum(after, 0))
+        successor = np.where(valid, order[np.minimum(target, order.size - 1)], -1)
+        has_predecessor = np.zeros(6 * m, dtype=bool)
+        has_predecessor[successor[valid]] = True
+        chain = np.zeros(keys.size, dtype=bool)
+        chain[edge[~has_predecessor]] = True
+        cycle = ~chain[edge]
+        start = np.full(keys.size, 6 * m)
+        np.minimum.at(start, edge[cycle], incidence[cycle])
+        successor[cycle & (successor == start[edge])] = -1
+        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
+        while (pointer >= 0).any():
+            live = np.nonzero(pointer >= 0)[0]
+            target = pointer[live]
+            rank[live] += rank[target]
+            pointer[live] = pointer[target]
+        order = np.lexsort((-rank, edge))
+        edges, groups = edge[order], group[owner[order]]
+        new = np.r_[True, (edges[1:] != edges[:-1]) | (groups[1:] != groups[:-1])]
+        edges, groups = edges[new], groups[new]
+        ridges = np.split(groups, np.cumsum(np.bincount(edges, minlength=keys.size))[:-1])
+        ridge_points, ridge_vertices = [], []
+        for e, part in enumerate(ridges):
+            around = part.tolist()
+            if chain[e]:
+                around.insert(0, -1)
+            elif len(around) > 1 and around[0] == around[-1]:
+                around.pop()
+            if len(around) >= 3:
+                ridge_points.append(divmod(int(keys[e]), self.npoints))
+                ridge_vertices.append(around)
+        return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
 
     def _ridges(self, group, simplices):
         """Ridges in 3-D and up: each Delaunay edge whose dual has at least d distinct vertices."""

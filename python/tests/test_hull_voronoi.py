@@ -51,6 +51,12 @@ def test_voronoi_equals_scipy(d, n, furthest, rng):
     assert len(ours.regions) == len(theirs.regions) == n + (not furthest) and ours.point_region.shape == (n,)
     for i in range(n):
         assert mapped(ours.regions[ours.point_region[i]]) == frozenset(theirs.regions[theirs.point_region[i]])
+    if d == 3:  # each ridge polygon in Qhull's cyclic order, up to rotation and direction
+        theirs_by_pair = {tuple(sorted(p)): v for p, v in zip(theirs.ridge_points.tolist(), theirs.ridge_vertices)}
+        for p, v in zip(ours.ridge_points.tolist(), ours.ridge_vertices):
+            mine, reference = [int(to_theirs[x]) if x >= 0 else -1 for x in v], theirs_by_pair[tuple(sorted(p))]
+            turns = [reference[i:] + reference[:i] for i in range(len(reference))]
+            assert mine in turns or mine[::-1] in turns
     if d == 2:  # Qhull's cyclic order (in either direction: Qhull's turn either way), ours counterclockwise
         for i in range(n):
             region = [int(to_theirs[v]) if v >= 0 else -1 for v in ours.regions[ours.point_region[i]]]
