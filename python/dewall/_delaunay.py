@@ -14,7 +14,7 @@ import numpy as np
 from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
-from ._furthest_site import furthest_site_simplices
+from ._furthest_site import extreme_hull_edges_2d, furthest_site_simplices
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
 # reciprocal condition number under which a barycentric transform is NaN.
@@ -91,9 +91,10 @@ class Delaunay:
         upper hull of the lifted points: each simplex's circumsphere contains
         every point), exact, by gift wrapping over the hull vertices with the
         library's predicates (dewall/_furthest_site.py); cospherical hull
-        vertices resolved by the library's symbolic perturbation. Hull vertices
-        in a hull facet's hyperplane (a grid, a cube) raise
-        NotImplementedError: the hull is not perturbed for it yet.
+        vertices resolved by the library's symbolic perturbation. In 3-D and
+        up, hull vertices in a hull facet's hyperplane (a grid, a cube) raise
+        NotImplementedError: the hull is not perturbed for it yet (in 2-D the
+        points inside hull edges are set aside exactly).
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).
@@ -152,7 +153,9 @@ class Delaunay:
         self._triangulation = _triangulate(points, self._engine, self._threads)
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
-            hull = _hull_facets(self._triangulation.simplices(), self._triangulation.neighbors())
+            simplices, neighbors = self._triangulation.simplices(), self._triangulation.neighbors()
+            hull = (extreme_hull_edges_2d(points, simplices, neighbors) if points.shape[1] == 2
+                    else _hull_facets(simplices, neighbors))
             self._triangulation = _dewall.from_simplices(points, furthest_site_simplices(points, hull).astype(np.uint32))
         self._set_bounds()
 

@@ -28,10 +28,11 @@ triangulation ambiguous; the pivot then uses the library's perturbed sphere
 test (CGAL's symbolic perturbation of the lifted points, the one the Delaunay
 triangulation uses), whose upper hull is unique, so the answer is one
 consistent triangulation, each circumsphere still containing every point (checked
-with the unperturbed test at the end). Hull vertices coplanar with a hull facet
-(a square's edge midpoint, a cube's faces, a grid) would need the perturbation of
-the hull itself as well: they raise NotImplementedError rather than returning a
-guess.
+with the unperturbed test at the end). In 2-D, points inside hull edges (a
+grid's sides) are set aside first (extreme_hull_edges_2d): they are never
+vertices. In 3-D and up, hull vertices coplanar with a hull facet (a cube's
+faces, a grid) would need the perturbation of the hull itself: they raise
+NotImplementedError rather than returning a guess.
 """
 
 from collections import deque
@@ -117,3 +118,21 @@ def furthest_site_simplices(points, hull_facets):
         if (signs(np.column_stack([np.tile(simplex, (others.size, 1)), others]), 1) < 0).any():
             raise RuntimeError("dewall: the furthest-site construction failed its check (a bug: please report)")
     return result
+
+
+def extreme_hull_edges_2d(points, simplices, neighbors):
+    """2-D: the convex hull's edges between its extreme points (rows of 2 indices). The
+    Delaunay triangulation's hull edges also pass through the points inside hull edges (a grid's
+    sides); those are dropped here, exactly (orientation ZERO with their two neighbours on the
+    boundary), so the furthest-site construction can start from a proper edge."""
+    simplex, opposite = np.nonzero(neighbors == -1)
+    after = {}
+    for s, j in zip(simplex, opposite):  # counterclockwise along the boundary (positively oriented triangles)
+        after[int(simplices[s, (j + 1) % 3])] = int(simplices[s, (j + 2) % 3])
+    ring = [next(iter(after))]
+    while after[ring[-1]] != ring[0]:
+        ring.append(after[ring[-1]])
+    ring = np.array(ring)
+    triples = np.column_stack((np.roll(ring, 1), ring, np.roll(ring, -1)))
+    extreme = ring[_dewall.predicate_signs(points, triples.astype(np.uint32), 0) != 0]
+    return np.column_stack((extreme, np.roll(extreme, -1)))

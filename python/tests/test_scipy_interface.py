@@ -384,6 +384,15 @@ def test_furthest_site_ties():
         area = np.abs(np.linalg.det(points[tri.simplices[:, 1:]] - points[tri.simplices[:, :1]])).sum() / 2
         assert tri.nsimplex == 10 and area == pytest.approx(dewall.ConvexHull(points).volume, rel=1e-12)
         assert (tri.find_simplex(points[:12] * 0.5) >= 0).all()
-    # a hull vertex in a hull facet's line: refused, not guessed
+    # 2-D: points inside hull edges are set aside (a grid: its 4 corners, one diagonal)
+    x = np.linspace(0, 1, 5)
+    grid = np.array(np.meshgrid(x, x)).reshape(2, -1).T
+    tri = dewall.Delaunay(grid, furthest_site=True)
+    assert tri.nsimplex == 2 and set(np.unique(tri.simplices)) == {0, 4, 20, 24}
+    assert (tri.find_simplex(grid) >= 0).all()
+    # 3-D: a hull vertex in a hull facet's plane (a cube's faces): refused, not guessed
+    import itertools
+
+    cube = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
     with pytest.raises(NotImplementedError, match="hyperplane"):
-        dewall.Delaunay(np.array([[0, 0], [1, 0], [2, 0], [0, 1], [1, 3]]), furthest_site=True)
+        dewall.Delaunay(cube, furthest_site=True)
