@@ -135,8 +135,8 @@ class Voronoi(_FromDelaunay):
     point (the circumcentres around it, -1 when the region is unbounded; in 2-D in
     counterclockwise order, in 3-D ridges in cyclic order), then an empty one, as Qhull's
     output has; a duplicate point shares its first occurrence's region. furthest_site=True:
-    the furthest-site diagram, from Delaunay(furthest_site=True) (same rules: exact, ties
-    raise NotImplementedError); points inside the hull get an empty region.
+    the furthest-site diagram, from Delaunay(furthest_site=True) (its rules on ties); points
+    inside the hull get an empty region, and there is no trailing one (as Qhull's).
     """
 
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
@@ -147,7 +147,7 @@ class Voronoi(_FromDelaunay):
     def _compute(self):
         tri = self._tri
         d, simplices = self.ndim, tri.simplices.astype(np.int64)
-        group = self._group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
+        group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
         self.vertices = _circumcentres(self.points, tri.simplices, group)
         if d == 2:
             self.ridge_points, self.ridge_vertices = self._ridges_2d(group)
@@ -242,7 +242,8 @@ class Voronoi(_FromDelaunay):
         return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
 
     def _ridges(self, group, simplices):
-        """Ridges in 3-D and up: each Delaunay edge whose dual has at least d distinct vertices."""
+        """Ridges in 4-D and up: each Delaunay edge whose dual has at least d distinct vertices
+        (unordered: a ridge there is a polytope of dimension 3 or more)."""
         tri, d = self._tri, self.ndim
         a, b = np.triu_indices(d + 1, 1)
         edges = np.sort(np.stack((simplices[:, a], simplices[:, b]), axis=2), axis=2).reshape(-1, 2)
@@ -260,8 +261,6 @@ class Voronoi(_FromDelaunay):
                 around.insert(0, -1)
             if len(around) < d:
                 continue
-            if d == 3:
-                around = self._around_edge(owner[start:stop], p, q, unbounded)
             ridge_points.append((p, q))
             ridge_vertices.append(around)
         return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
@@ -318,33 +317,6 @@ class Voronoi(_FromDelaunay):
             elif len(region) > 1 and region[0] == region[-1]:  # a merged cell met again at the wrap
                 region.pop()
         return regions
-
-    def _around_edge(self, tets, p, q, unbounded):
-        """3-D: the Voronoi vertices of the tetrahedra `tets` around the edge pq in cyclic order, by
-        walking from tetrahedron to tetrahedron across their facets through pq (topology, not
-        angles); an unbounded ridge starts with -1 and walks from one hull facet to the other."""
-        tri = self._tri
-        simplices, neighbors = tri.simplices, tri.neighbors
-
-        def across(s, previous):  # the tetrahedra through pq next to s, other than `previous`
-            row = list(simplices[s])
-            return [int(neighbors[s, k]) for k in range(4) if row[k] not in (p, q)
-                    and int(neighbors[s, k]) != previous]
-
-        start = int(tets[0])
-        if unbounded:  # start at a tetrahedron with a hull facet through pq
-            start = next(int(s) for s in tets if -1 in across(int(s), None))
-        walk, previous, s = [start], -2, start
-        while True:
-            options = [t for t in across(s, previous) if t != -1]
-            if not options or options[0] == start:
-                break
-            previous, s = s, options[0]
-            walk.append(s)
-            if len(walk) > len(tets):
-                break
-        order = list(dict.fromkeys(int(self._group[t]) for t in walk))
-        return ([-1] if unbounded else []) + order
 
     @property
     def ridge_dict(self):
