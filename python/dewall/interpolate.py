@@ -231,11 +231,11 @@ def griddata(points, values, xi, method="linear", fill_value=np.nan, rescale=Fal
         from scipy.interpolate import griddata as scipy_griddata
 
         return scipy_griddata(points, values, xi, method=method, fill_value=fill_value, rescale=rescale)
+    # xi goes to the interpolator as given: a tuple (x, y) keeps the shape of its arrays, as scipy's
     if method == "nearest":
-        return NearestNDInterpolator(points, values, rescale=rescale)(_coordinates(xi, ndim))
+        return NearestNDInterpolator(points, values, rescale=rescale)(xi)
     if method == "linear":
-        return LinearNDInterpolator(points, values, fill_value=fill_value, rescale=rescale)(_coordinates(xi, ndim))
+        return LinearNDInterpolator(points, values, fill_value=fill_value, rescale=rescale)(xi)
     if method == "cubic" and ndim == 2:
-        return CloughTocher2DInterpolator(points, values, fill_value=fill_value, rescale=rescale)(
-            _coordinates(xi, ndim))
+        return CloughTocher2DInterpolator(points, values, fill_value=fill_value, rescale=rescale)(xi)
     raise ValueError(f"Unknown interpolation method {method!r} for {ndim} dimensional data")

@@ -43,6 +43,11 @@ def test_call_conventions_and_options(rng):
         di.LinearNDInterpolator(points, values[:-1])
     with pytest.raises(ValueError, match="number of dimensions in xi"):
         ours(np.ones((3, 3)))
+    for xi in ((0.5, 0.5), np.array([0.5, 0.5]), [0.5, 0.5], (x, y), np.stack((x, y), axis=-1)):  # shapes as scipy's
+        for method in ("linear", "nearest", "cubic"):
+            assert di.griddata(points, values, xi, method=method).shape == \
+                si.griddata(points, values, xi, method=method).shape
+            assert ours(xi).shape == theirs(xi).shape
     with pytest.raises(ValueError, match="Unknown interpolation method"):
         di.griddata(points, values, points, method="cubic2")
 
