@@ -46,6 +46,15 @@ def _check_qhull_options(options):
     return options
 
 
+def _option_in_effect(options, name):
+    """Whether Qhull option `name` (Qbb or Qz) would be in effect for scipy: its defaults
+    ("Qbb Qc Qz ...") when no options are given, else the tokens given (QJ implies Qbb)."""
+    if options is None:
+        return True
+    tokens = options.split()
+    return name in tokens or (name == "Qbb" and any(t.startswith("QJ") for t in tokens))
+
+
 def _check_threads(threads):
     """`threads` as an int >= 1 (None: all cores), capped at the CPUs this process may run on.
 
@@ -281,8 +290,10 @@ class Delaunay:
     def paraboloid_scale(self):
         """Qhull's scale of the lifted coordinate (as scipy's, option Qbb): the largest |coordinate|
         divided by the range of the lifted values (sum of squares, up to 1.1 times their maximum
-        for Qhull's point at infinity, option Qz, which scipy leaves out for furthest_site). 1 in
-        incremental mode, where scipy's Qhull does not scale (and shift 0)."""
+        for Qhull's point at infinity, option Qz, which scipy leaves out for furthest_site). 1
+        (and shift 0) in incremental mode, where scipy's Qhull does not scale, and when
+        qhull_options is given without Qbb (or QJ, which implies it): scipy's defaults
+        "Qbb Qc Qz Q12" apply only when qhull_options is None, as in scipy."""
         return self._paraboloid[0]
 
     @property
@@ -294,10 +305,11 @@ class Delaunay:
     @property
     def _paraboloid(self):
         def compute():
-            if self._incremental:
+            if self._incremental or not _option_in_effect(self._qhull_options, "Qbb"):
                 return 1.0, 0.0
             squares = np.einsum("ij,ij->i", self.points, self.points)
-            low, high = squares.min(), squares.max() * (1.0 if self.furthest_site else 1.1)
+            at_infinity = _option_in_effect(self._qhull_options, "Qz") and not self.furthest_site
+            low, high = squares.min(), squares.max() * (1.1 if at_infinity else 1.0)
             largest = np.abs(self.points).max()
             if not high > low or not largest > 0:
                 return 1.0, 0.0

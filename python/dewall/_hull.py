@@ -9,7 +9,7 @@ point from the points.
 
 import numpy as np
 
-from ._delaunay import Delaunay, _check_qhull_options, _determinants
+from ._delaunay import Delaunay, _check_qhull_options, _determinants, _option_in_effect
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -19,8 +19,7 @@ class _FromDelaunay:
 
     def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None,
                  furthest_site=False):
-        _check_qhull_options(qhull_options)
-        self._tri = Delaunay(points, furthest_site, incremental, engine=engine, threads=threads)
+        self._tri = Delaunay(points, furthest_site, incremental, qhull_options, engine=engine, threads=threads)
         self._update()
 
     def _update(self):
@@ -133,10 +132,12 @@ class Voronoi(_FromDelaunay):
     vertices (counting -1, the vertex at infinity, for a hull edge): edges inside a
     cospherical cell, whose dual collapsed, are not ridges. Regions: one per distinct input
     point (the circumcentres around it, -1 when the region is unbounded; in 2-D in
-    counterclockwise order, in 3-D ridges in cyclic order), then an empty one, as Qhull's
-    output has; a duplicate point shares its first occurrence's region. furthest_site=True:
+    counterclockwise order, in 3-D ridges in cyclic order), after an empty one first (Qhull's
+    point at infinity, option Qz: present when scipy's would be, i.e. with the default options
+    or "Qz" in qhull_options, not incremental, not furthest site); a duplicate point shares its
+    first occurrence's region. furthest_site=True:
     the furthest-site diagram, from Delaunay(furthest_site=True) (its rules on ties); points
-    inside the hull get an empty region, and there is no trailing one (as Qhull's).
+    inside the hull get an empty region, and there is no point at infinity (as Qhull's).
     """
 
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
@@ -160,13 +161,15 @@ class Voronoi(_FromDelaunay):
         dup = tri.duplicates
         first[dup[:, 0]] = dup[:, 1]
         around = self._regions_2d(group) if d == 2 else self._regions(group)
-        self.regions, self.point_region = [], np.empty(self.npoints, dtype=np.intp)
+        # Qhull's point at infinity (option Qz: scipy's default, not with furthest_site or incremental)
+        # has an empty region; Qhull's lands among the others, dewall's first.
+        at_infinity = (_option_in_effect(tri._qhull_options, "Qz") and not self.furthest_site
+                       and not tri._incremental)
+        self.regions, self.point_region = [[]] if at_infinity else [], np.empty(self.npoints, dtype=np.intp)
         for i in np.nonzero(first == np.arange(self.npoints))[0]:
             self.point_region[i] = len(self.regions)
             self.regions.append(around[i])
         self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
-        if not self.furthest_site:
-            self.regions.append([])  # Qhull's point at infinity (option Qz, not used for the furthest site)
 
     def _ridges_2d(self, group):
         """2-D ridges, vectorised: each triangle edge with its two Voronoi vertices (the groups of

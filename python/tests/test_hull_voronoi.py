@@ -156,18 +156,20 @@ def test_cospherical_points_give_one_vertex():
         assert ours.vertices.shape == theirs.vertices.shape  # 1, then 6: one per cospherical cell
         np.testing.assert_allclose(np.sort(ours.vertices, axis=0), np.sort(theirs.vertices, axis=0), atol=1e-12)
         assert simplex_set(ours.ridge_points) == simplex_set(theirs.ridge_points)  # none, then 20
-    assert dewall.Voronoi(corners).regions[:8] == [[-1, 0]] * 8
+    assert dewall.Voronoi(corners).regions == [[]] + [[-1, 0]] * 8
 
 
+@pytest.mark.parametrize("options, extra", [("Qbb Qc Qz", 1), ("Qbb Qc", 0)])
 @pytest.mark.parametrize("n, ndim", [(50, 2), (100, 3)])
-def test_point_region_structure(n, ndim):  # TestVoronoi.test_point_region_structure (gh-16773), Qz variant
+def test_point_region_structure(n, ndim, options, extra):  # TestVoronoi.test_point_region_structure (gh-16773)
     points = np.random.default_rng(7790).random((n, ndim))
-    vor = dewall.Voronoi(points)
-    # scipy asserts max() == n: Qhull's empty region (its point at infinity) lands among the others;
-    # dewall's is the last one, so max() == n - 1. What the case is about holds in both:
-    assert vor.point_region.max() == n - 1 and vor.point_region.size == len(vor.regions) - 1 == n
+    vor = dewall.Voronoi(points, qhull_options=options)
+    assert vor.point_region.max() == n - 1 + extra and vor.point_region.size == len(vor.regions) - extra == n
     sizes = [len(r) for r in vor.regions]
-    assert sizes.count(0) == 1 and sizes.index(0) not in vor.point_region
+    assert sizes.count(0) == extra
+    if extra:
+        assert sizes.index(0) not in vor.point_region
+    assert len(dewall.Voronoi(points, incremental=True).regions) == n  # no Qz in incremental mode, as scipy's
 
 
 @pytest.mark.parametrize("d, n", [(2, 30), (3, 30), (4, 30), (5, 30), (6, 10)])

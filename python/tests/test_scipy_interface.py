@@ -220,9 +220,15 @@ def test_scipys_positional_signature(rng):
         dewall.Delaunay(points, False, False, None, "cgal")  # engine and threads are keyword-only
 
 
-@pytest.mark.parametrize("options", ["QJ", "Qt Qbb Qc Qz", "QJ Pp", "Qx Q12", b"Qbb"])
-def test_qhull_options_ignored(options):
-    dewall.Delaunay(SQUARE, qhull_options=options)
+@pytest.mark.parametrize("options", ["QJ", "Qt Qbb Qc Qz", "QJ Pp", "Qx Q12", b"Qbb", "Qc", "Qz", "Qbb Qz", None])
+def test_qhull_options_ignored(options, rng):
+    points = rng.random((40, 2)) * 3 + 1
+    text = options.decode() if isinstance(options, bytes) else options  # scipy takes str only
+    ours, theirs = dewall.Delaunay(points, qhull_options=options), ScipyDelaunay(points, qhull_options=text)
+    assert simplex_set(ours.simplices) == simplex_set(dewall.Delaunay(points).simplices)
+    # but the lifting follows the options, as scipy's (its defaults apply only without options)
+    assert ours.paraboloid_scale == pytest.approx(theirs.paraboloid_scale, rel=1e-9)
+    assert ours.paraboloid_shift == pytest.approx(theirs.paraboloid_shift, rel=1e-9, abs=1e-12)
 
 
 @pytest.mark.parametrize("options", ["Qu", "QG4", "Qfoo", "QbB", "Pdk:0"])
