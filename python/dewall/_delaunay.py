@@ -107,10 +107,13 @@ class Delaunay:
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).
-    qhull_options: accepted and ignored when every token is one of Qhull's
-        precision or output options (Qbb, Qc, Qz, Qx, Qt, QJ, Q12, Pp, …: an
-        exact triangulation needs none); any other token raises
-        dewall.InvalidOption (a ValueError and a QhullError), e.g. "Qu" or "QG4".
+    qhull_options: accepted when every token is one of Qhull's precision or
+        output options (Qbb, Qc, Qz, Qx, Qt, QJ, Q12, Pp, …: an exact
+        triangulation needs none, the simplices never depend on them); any
+        other token raises dewall.InvalidOption (a ValueError and a
+        QhullError), e.g. "Qu" or "QG4". As in scipy, options given replace
+        the defaults "Qbb Qc Qz Q12": Qbb (or QJ) and Qz decide the lifting's
+        scale (paraboloid_scale, equations) and Voronoi's empty region.
     engine (keyword only): "auto" (in 2D and 3D the hybrid, handing over to
         CGAL's incremental construction when DeWall's searches prove too
         costly, e.g. points on one sphere; in 4D and up dewall's own
