@@ -9,7 +9,8 @@ point from the points.
 
 import numpy as np
 
-from ._delaunay import Delaunay, _check_qhull_options, _determinants, _option_in_effect
+from ._delaunay import Delaunay, _determinants, _option_in_effect
+from ._furthest_site import extreme_hull_edges_2d
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -62,20 +63,51 @@ class ConvexHull(_FromDelaunay):
     inside), coplanar, good (None), volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
 
     The facets are the boundary facets of the exact Delaunay triangulation, so on random
-    points they are Qhull's. Where several points lie in one hull facet (a cube's faces, a
-    grid) they are all vertices here, each facet triangulated by CGAL's perturbation;
-    Qhull reports the extreme points only and lists the others in `coplanar`. Duplicates of
-    a hull vertex are in `coplanar`.
+    points they are Qhull's. In 2-D only the extreme points are vertices (points inside a hull
+    edge, e.g. a grid's sides, are set aside exactly, as Qhull leaves them out). In 3-D and up,
+    where several points lie in one hull facet (a cube's faces, a grid) they are all vertices
+    here, each flat facet triangulated by CGAL's perturbation; Qhull keeps the extreme points
+    only. `coplanar` is empty: Qhull (option Qc) lists points it could not place for rounding,
+    and neither boundary points nor duplicates (checked with scipy 1.10).
     """
 
     def _compute(self):
         tri = self._tri
-        simplex, opposite = np.nonzero(tri.neighbors == -1)
         d = self.ndim
-        self.simplices = tri.convex_hull
+        full = self.points[tri.simplices]
+        factorial = float(np.prod(np.arange(1, d + 1)))
+        self.volume = float(np.abs(_determinants(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
+        if d == 2:
+            self._boundary_2d()
+        else:
+            self._boundary(factorial)
         self.nsimplex = self.simplices.shape[0]
+        self.coplanar = np.empty((0, 3), dtype=np.int32)
+        self.good = None
+
+    def _boundary_2d(self):
+        """2-D: the polygon of the extreme points, counterclockwise; facet i runs from vertex i to
+        vertex i + 1, its neighbours are facets i + 1 (opposite its first vertex) and i - 1."""
+        tri = self._tri
+        edges = extreme_hull_edges_2d(self.points, tri.simplices, tri.neighbors)
+        k = np.arange(len(edges))
+        self.simplices = edges.astype(np.int32)
+        self.vertices = edges[:, 0].astype(np.int32)
+        self.neighbors = np.column_stack(((k + 1) % len(k), (k - 1) % len(k))).astype(np.int32)
+        start = self.points[edges[:, 0]]
+        delta = self.points[edges[:, 1]] - start
+        length = np.hypot(delta[:, 0], delta[:, 1])
+        normal = np.column_stack((delta[:, 1], -delta[:, 0])) / length[:, None]  # right of a counterclockwise edge
+        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, start)))
+        self.area = float(length.sum())
+
+    def _boundary(self, factorial):
+        """3-D and up: the Delaunay triangulation's boundary facets."""
+        tri, d = self._tri, self.ndim
+        simplex, opposite = np.nonzero(tri.neighbors == -1)
+        self.simplices = tri.convex_hull
         self.neighbors = _ridge_pairs(self.simplices)
-        self.vertices = self._ordered_vertices()
+        self.vertices = np.unique(self.simplices).astype(np.int32)
         corners = self.points[self.simplices]  # (m, d, d)
         edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
         normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
@@ -84,37 +116,7 @@ class ConvexHull(_FromDelaunay):
         length = np.linalg.norm(normal, axis=1)
         normal /= length[:, None]
         self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, corners[:, 0, :])))
-        factorial = float(np.prod(np.arange(1, d + 1)))
         self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure
-        full = self.points[tri.simplices]
-        self.volume = float(np.abs(_determinants(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
-        on_hull = np.zeros(self.npoints, dtype=bool)
-        on_hull[self.simplices] = True
-        dup = tri.duplicates
-        dup = dup[on_hull[dup[:, 1]]]
-        facet_of = np.full(self.npoints, -1, dtype=np.int32)
-        facet_of[self.simplices.ravel()] = np.repeat(np.arange(self.nsimplex, dtype=np.int32), d)
-        self.coplanar = np.column_stack((dup[:, 0], facet_of[dup[:, 1]], dup[:, 1])).astype(np.int32)
-        self.good = None
-
-    def _ordered_vertices(self):
-        unique = np.unique(self.simplices).astype(np.int32)
-        if self.ndim != 2:
-            return unique
-        # 2-D: follow the edges. Each hull edge (a, b) of a positively oriented triangle, with
-        # the triangle's third vertex removed, keeps the triangle's counterclockwise order.
-        tri = self._tri
-        simplex, opposite = np.nonzero(tri.neighbors == -1)
-        after = {}
-        for s, j in zip(simplex, opposite):
-            row = tri.simplices[s]
-            a, b = int(row[(j + 1) % 3]), int(row[(j + 2) % 3])
-            after[a] = b
-        start = int(unique[0])
-        order = [start]
-        while after[order[-1]] != start:
-            order.append(after[order[-1]])
-        return np.array(order, dtype=np.int32)
 
 
 class Voronoi(_FromDelaunay):

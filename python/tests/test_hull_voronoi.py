@@ -98,6 +98,19 @@ def test_volume_area_cube():  # TestConvexHull.test_volume_area
     assert hull.volume == pytest.approx(1.0, rel=1e-14) and hull.area == pytest.approx(6.0, rel=1e-14)
 
 
+def test_2d_hull_of_a_grid_has_its_corners_only():
+    x = np.arange(4.0)
+    grid = np.array(np.meshgrid(x, x)).reshape(2, -1).T
+    grid = np.vstack((grid, grid[:2]))  # and duplicates
+    ours, theirs = dewall.ConvexHull(grid), ss.ConvexHull(grid)
+    assert simplex_set(ours.simplices) == simplex_set(theirs.simplices) == {(0, 3), (0, 12), (3, 15), (12, 15)}
+    assert set(ours.vertices) == set(theirs.vertices) and ours.coplanar.shape == theirs.coplanar.shape == (0, 3)
+    assert (ours.volume, ours.area) == (9.0, 12.0)
+    for i, facet in enumerate(ours.simplices):  # neighbours: the facet through the other vertex
+        for j in range(2):
+            assert facet[1 - j] in ours.simplices[ours.neighbors[i, j]]
+
+
 def test_hull_incremental(rng):  # TestConvexHull.test_incremental (bug-2850)
     chunks = [rng.random((10, 2)), np.array([[0, 0], [0, 1], [1, 0], [1, 1]])]
     hull = dewall.ConvexHull(chunks[0], incremental=True)
