@@ -111,6 +111,23 @@ def test_2d_hull_of_a_grid_has_its_corners_only():
             assert facet[1 - j] in ours.simplices[ours.neighbors[i, j]]
 
 
+def test_3d_hull_of_a_cube_and_a_grid_has_their_corners_only():
+    import itertools
+
+    cube = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
+    on_faces = np.array([[0.5, 0.5, 0.5], [0.5, 0.5, 0], [0.5, 0, 0], [0.3, 0.6, 1]])  # inside, face, edge, face
+    grid = np.stack([a.ravel() for a in np.meshgrid(*[np.arange(4.0)] * 3)], axis=1)
+    for points in (cube, np.vstack((cube, on_faces)), grid):
+        ours, theirs = dewall.ConvexHull(points), ss.ConvexHull(points)
+        assert ours.nsimplex == theirs.nsimplex == 12  # two triangles per square face
+        np.testing.assert_array_equal(np.sort(ours.vertices), np.sort(theirs.vertices))
+        assert ours.volume == pytest.approx(theirs.volume, rel=1e-14) and ours.area == pytest.approx(theirs.area)
+        assert (points @ ours.equations[:, :-1].T + ours.equations[:, -1] <= 1e-12).all()
+        for i, facet in enumerate(ours.simplices):  # each neighbour shares the facet's other two vertices
+            for j in range(3):
+                assert set(np.delete(facet, j)) <= set(ours.simplices[ours.neighbors[i, j]])
+
+
 def test_hull_incremental(rng):  # TestConvexHull.test_incremental (bug-2850)
     chunks = [rng.random((10, 2)), np.array([[0, 0], [0, 1], [1, 0], [1, 1]])]
     hull = dewall.ConvexHull(chunks[0], incremental=True)
