@@ -14,7 +14,8 @@ import numpy as np
 from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
-from ._furthest_site import extreme_hull_edges_2d, furthest_site_simplices
+from ._boundary import extreme_facets_3d, extreme_hull_edges_2d
+from ._furthest_site import furthest_site_simplices
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
 # reciprocal condition number under which a barycentric transform is NaN.
@@ -100,10 +101,11 @@ class Delaunay:
         upper hull of the lifted points: each simplex's circumsphere contains
         every point), exact, by gift wrapping over the hull vertices with the
         library's predicates (dewall/_furthest_site.py); cospherical hull
-        vertices resolved by the library's symbolic perturbation. In 3-D and
-        up, hull vertices in a hull facet's hyperplane (a grid, a cube) raise
-        NotImplementedError: the hull is not perturbed for it yet (in 2-D the
-        points inside hull edges are set aside exactly).
+        vertices resolved by the library's symbolic perturbation. Points
+        inside hull edges and faces are set aside exactly in 2-D and 3-D; a
+        3-D hull all of whose faces are flat polygons of 4 or more corners
+        (a cube, a box-shaped grid), and 4-D+ hulls with such faces, raise
+        NotImplementedError: no start facet is known there yet.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).
@@ -166,9 +168,14 @@ class Delaunay:
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
             simplices, neighbors = self._triangulation.simplices(), self._triangulation.neighbors()
-            hull = (extreme_hull_edges_2d(points, simplices, neighbors) if points.shape[1] == 2
-                    else _hull_facets(simplices, neighbors))
-            self._triangulation = _dewall.from_simplices(points, furthest_site_simplices(points, hull).astype(np.uint32))
+            hull, whole = _hull_facets(simplices, neighbors), None
+            if points.shape[1] == 2:
+                hull = extreme_hull_edges_2d(points, simplices, neighbors)
+                whole = np.ones(len(hull), dtype=bool)
+            elif points.shape[1] == 3:
+                hull, _, whole = extreme_facets_3d(points, simplices, neighbors, hull)
+            self._triangulation = _dewall.from_simplices(
+                points, furthest_site_simplices(points, hull, whole).astype(np.uint32))
         self._set_bounds()
 
     def _set_bounds(self):

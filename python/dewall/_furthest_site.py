@@ -28,11 +28,13 @@ triangulation ambiguous; the pivot then uses the library's perturbed sphere
 test (CGAL's symbolic perturbation of the lifted points, the one the Delaunay
 triangulation uses), whose upper hull is unique, so the answer is one
 consistent triangulation, each circumsphere still containing every point (checked
-with the unperturbed test at the end). In 2-D, points inside hull edges (a
-grid's sides) are set aside first (extreme_hull_edges_2d): they are never
-vertices. In 3-D and up, hull vertices coplanar with a hull facet (a cube's
-faces, a grid) would need the perturbation of the hull itself: they raise
-NotImplementedError rather than returning a guess.
+with the unperturbed test at the end, and the volumes against the hull's). Points
+inside hull edges and faces are never vertices; in 2-D and 3-D they are set aside
+first (_boundary), and the construction starts from a whole hull face (a triangle
+on extreme points: the triangulation must have it). A 3-D hull without one (a
+cube, a box-shaped grid: all faces flat with 4 or more corners), and 4-D+ hulls
+with a hull vertex in a facet's hyperplane, raise NotImplementedError rather than
+return a guess.
 """
 
 from collections import deque
@@ -41,14 +43,17 @@ import numpy as np
 
 from . import _dewall
 
-_COPLANAR = ("furthest_site=True: some convex hull facet has another hull vertex in its hyperplane (points "
-             "on a hull edge or face: a grid, a cube); dewall does not perturb the hull for the furthest-site "
-             "triangulation yet")
+_COPLANAR = ("furthest_site=True: the convex hull has flat faces with 4 or more corners and no triangular face "
+             "to start from (a cube, a box-shaped grid), or such faces in 4-D and up (a hull vertex in a hull "
+             "facet's hyperplane); dewall does not construct that furthest-site triangulation yet")
 
 
-def furthest_site_simplices(points, hull_facets):
+def furthest_site_simplices(points, hull_facets, whole=None):
     """The furthest-site Delaunay simplices (int32, each positively oriented) of `points`, whose
-    convex hull facets are `hull_facets` (rows of d point indices)."""
+    convex hull facets are `hull_facets` (rows of d point indices). `whole`, when given, marks the
+    facets that are whole faces of the hull on extreme points (_boundary): the construction then
+    starts from one of them and allows other hull points in facet hyperplanes (the corners of
+    flat faces); without it such points raise NotImplementedError."""
     d = points.shape[1]
     vertices = np.unique(hull_facets).astype(np.uint32)
 
@@ -64,11 +69,14 @@ def furthest_site_simplices(points, hull_facets):
             simplex[0], simplex[1] = simplex[1], simplex[0]
         return simplex
 
-    # Refuse hull vertices in a hull facet's hyperplane (see above).
-    for facet in hull_facets:
-        others = vertices[~np.isin(vertices, facet)]
-        if (orientation(np.column_stack([np.tile(facet, (others.size, 1)), others])) == 0).any():
-            raise NotImplementedError(_COPLANAR)
+    if whole is None:  # refuse hull vertices in a hull facet's hyperplane (see above)
+        for facet in hull_facets:
+            others = vertices[~np.isin(vertices, facet)]
+            if (orientation(np.column_stack([np.tile(facet, (others.size, 1)), others])) == 0).any():
+                raise NotImplementedError(_COPLANAR)
+        whole = np.ones(len(hull_facets), dtype=bool)
+    elif not whole.any():
+        raise NotImplementedError(_COPLANAR)
 
     def pivot(ridge, apex_side):
         """The vertex completing `ridge` beyond it (the side of sign -apex_side), or None."""
@@ -88,7 +96,7 @@ def furthest_site_simplices(points, hull_facets):
                 return best
             best = outside[0]
 
-    start = [int(v) for v in hull_facets[0]]
+    start = [int(v) for v in hull_facets[int(np.argmax(whole))]]
     side = orientation(np.column_stack([np.tile(start, (vertices.size, 1)), vertices]))
     inner = int(side[side != 0][0])  # every hull vertex is on one side of a hull facet
     first = pivot(start, -inner)
@@ -112,6 +120,12 @@ def furthest_site_simplices(points, hull_facets):
                 simplices.add(neighbour)
                 queue.append(neighbour)
     result = np.array([positive(s) for s in sorted(simplices)], dtype=np.int32).reshape(-1, d + 1)
+    # They tile the hull: their volumes add up to its volume (floating point, a safety net).
+    corners = points[result]
+    volume = np.abs(np.linalg.det(corners[:, 1:] - corners[:, :1])).sum()
+    hull_volume = _hull_volume(points, hull_facets, vertices)
+    if not abs(volume - hull_volume) <= 1e-9 * hull_volume:
+        raise NotImplementedError(_COPLANAR)
     # The defining property, unperturbed: every circumsphere contains every hull vertex (inside or on).
     for simplex in result:
         others = vertices[~np.isin(vertices, simplex)]
@@ -120,19 +134,9 @@ def furthest_site_simplices(points, hull_facets):
     return result
 
 
-def extreme_hull_edges_2d(points, simplices, neighbors):
-    """2-D: the convex hull's edges between its extreme points (rows of 2 indices). The
-    Delaunay triangulation's hull edges also pass through the points inside hull edges (a grid's
-    sides); those are dropped here, exactly (orientation ZERO with their two neighbours on the
-    boundary), so the furthest-site construction can start from a proper edge."""
-    simplex, opposite = np.nonzero(neighbors == -1)
-    after = {}
-    for s, j in zip(simplex, opposite):  # counterclockwise along the boundary (positively oriented triangles)
-        after[int(simplices[s, (j + 1) % 3])] = int(simplices[s, (j + 2) % 3])
-    ring = [next(iter(after))]
-    while after[ring[-1]] != ring[0]:
-        ring.append(after[ring[-1]])
-    ring = np.array(ring)
-    triples = np.column_stack((np.roll(ring, 1), ring, np.roll(ring, -1)))
-    extreme = ring[_dewall.predicate_signs(points, triples.astype(np.uint32), 0) != 0]
-    return np.column_stack((extreme, np.roll(extreme, -1)))
+def _hull_volume(points, hull_facets, vertices):
+    """The hull's volume from its facets (times d!): the cones from an interior point (the
+    vertices' mean), as the simplices' volumes below are measured."""
+    centre = points[vertices].mean(axis=0)
+    corners = points[hull_facets]
+    return np.abs(np.linalg.det(corners - centre[None, None, :])).sum()

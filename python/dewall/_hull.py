@@ -9,9 +9,8 @@ point from the points.
 
 import numpy as np
 
-from . import _dewall
+from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, ridge_pairs
 from ._delaunay import Delaunay, _determinants, _option_in_effect
-from ._furthest_site import extreme_hull_edges_2d
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -40,78 +39,6 @@ class _FromDelaunay:
         self._tri.close()
 
 
-def _extreme_facets_3d(points, tri):
-    """3-D hull facets on the extreme points only: the Delaunay boundary triangles, where several
-    lie in one plane (exact orientation ZERO across their shared edge), replaced by a fan over the
-    corners of that flat face (its boundary cycle without the points inside its edges); points
-    inside a face drop out with its inner triangles. Returns (facets, a point inside for each)."""
-    simplex, opposite = np.nonzero(tri.neighbors == -1)
-    facets = tri.convex_hull.astype(np.int64)
-    inside = tri.simplices[simplex, opposite].astype(np.int64)
-
-    def orientation(rows):
-        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), 0)
-
-    # counterclockwise seen from outside: the inside point on the negative side
-    flip = orientation(np.column_stack((facets, inside))) > 0
-    facets[flip] = facets[flip][:, [0, 2, 1]]
-    neighbors = _ridge_pairs(facets)
-    i, j = np.nonzero(neighbors >= 0)
-    n = neighbors[i, j]
-    other = np.array([[v for v in facets[b] if v not in facets[a]][0] for a, b in zip(i, n)], dtype=np.int64)
-    flat = orientation(np.column_stack((facets[i], other))) == 0
-    if not flat.any():
-        return facets.astype(np.int32), inside
-    parent = np.arange(len(facets))
-
-    def root(x):
-        while parent[x] != x:
-            parent[x] = parent[parent[x]]
-            x = parent[x]
-        return x
-
-    for a, b in zip(i[flat], n[flat]):
-        ra, rb = root(a), root(b)
-        if ra != rb:
-            parent[max(ra, rb)] = min(ra, rb)
-    groups = {}
-    for f in range(len(facets)):
-        groups.setdefault(root(f), []).append(f)
-    out, out_inside = [], []
-    for members in groups.values():
-        if len(members) == 1:
-            out.append(facets[members[0]])
-            out_inside.append(inside[members[0]])
-            continue
-        directed = {(int(f[k]), int(f[(k + 1) % 3])) for f in facets[members] for k in range(3)}
-        after = {a: b for a, b in directed if (b, a) not in directed}  # the face's boundary, counterclockwise
-        ring = [next(iter(after))]
-        while after[ring[-1]] != ring[0]:
-            ring.append(after[ring[-1]])
-        ring = np.array(ring)
-        below = inside[members[0]]
-        triples = np.column_stack((np.roll(ring, 1), ring, np.roll(ring, -1), np.full(len(ring), below)))
-        corners = ring[orientation(triples) != 0]  # collinear with its neighbours: inside an edge
-        for k in range(1, len(corners) - 1):
-            out.append([corners[0], corners[k], corners[k + 1]])
-            out_inside.append(below)
-    return np.array(out, dtype=np.int32), np.array(out_inside, dtype=np.int64)
-
-
-def _ridge_pairs(facets):
-    """Each facet's ridges (the facet without its vertex j) matched in pairs: neighbors[i, j]
-    is the facet sharing the ridge of facet i opposite its vertex j (-1 when none)."""
-    m, k = facets.shape
-    ridges = np.sort(np.stack([np.delete(facets, j, axis=1) for j in range(k)], axis=1), axis=2)  # (m, k, k-1)
-    flat = ridges.reshape(m * k, k - 1)
-    order = np.lexsort(flat.T[::-1])
-    same = np.all(flat[order][1:] == flat[order][:-1], axis=1)
-    neighbors = np.full(m * k, -1, dtype=np.int32)
-    first, second = order[:-1][same], order[1:][same]
-    neighbors[first], neighbors[second] = second // k, first // k
-    return neighbors.reshape(m, k)
-
-
 class ConvexHull(_FromDelaunay):
     """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
 
@@ -125,8 +52,9 @@ class ConvexHull(_FromDelaunay):
     points they are Qhull's. In 2-D and 3-D only the extreme points are vertices, as Qhull's:
     points inside a hull edge or flat face (a grid's sides, a cube's faces) are set aside
     exactly, and a flat face is a fan over its corners. In 4-D and up such points are still
-    vertices here, each flat facet triangulated by CGAL's perturbation. `coplanar` is empty: Qhull (option Qc) lists points it could not place for rounding,
-    and neither boundary points nor duplicates (checked with scipy 1.10).
+    vertices here, each flat facet triangulated by CGAL's perturbation. `coplanar` is empty:
+    Qhull (option Qc) lists points it could not place for rounding, and neither boundary
+    points nor duplicates (checked with scipy 1.10).
     """
 
     def _compute(self):
@@ -138,7 +66,10 @@ class ConvexHull(_FromDelaunay):
         if d == 2:
             self._boundary_2d()
         else:
-            self._boundary(factorial, _extreme_facets_3d(self.points, tri) if d == 3 else None)
+            extreme = None
+            if d == 3:
+                extreme = extreme_facets_3d(self.points, tri.simplices, tri.neighbors, tri.convex_hull)[:2]
+            self._boundary(factorial, extreme)
         self.nsimplex = self.simplices.shape[0]
         self.coplanar = np.empty((0, 3), dtype=np.int32)
         self.good = None
@@ -168,7 +99,7 @@ class ConvexHull(_FromDelaunay):
             self.simplices, inside = tri.convex_hull, tri.simplices[simplex, opposite]
         else:
             self.simplices, inside = extreme
-        self.neighbors = _ridge_pairs(self.simplices)
+        self.neighbors = ridge_pairs(self.simplices)
         self.vertices = np.unique(self.simplices).astype(np.int32)
         corners = self.points[self.simplices]  # (m, d, d)
         edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)

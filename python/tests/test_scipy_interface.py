@@ -396,9 +396,15 @@ def test_furthest_site_ties():
     tri = dewall.Delaunay(grid, furthest_site=True)
     assert tri.nsimplex == 2 and set(np.unique(tri.simplices)) == {0, 4, 20, 24}
     assert (tri.find_simplex(grid) >= 0).all()
-    # 3-D: a hull vertex in a hull facet's plane (a cube's faces): refused, not guessed
+    # 3-D: a square pyramid (a flat square base, points inside the base, its edges, the pyramid)
+    pyramid = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [1, 1, 0], [0.5, 0.5, 1], [0.5, 0, 0], [0.3, 0.4, 0],
+                        [0.5, 0.5, 0.3]])
+    tri = dewall.Delaunay(pyramid, furthest_site=True)
+    assert set(np.unique(tri.simplices)) == {0, 1, 2, 3, 4} and tri.nsimplex == 2
+    assert (tri.plane_distance(pyramid) <= 1e-12).all()
+    # 3-D without a triangular face (a cube): refused, not guessed
     import itertools
 
     cube = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
-    with pytest.raises(NotImplementedError, match="hyperplane"):
+    with pytest.raises(NotImplementedError, match="no triangular face"):
         dewall.Delaunay(cube, furthest_site=True)
