@@ -2,7 +2,8 @@
 
     >>> import dewall
     >>> tri = dewall.Delaunay(points)            # as scipy.spatial.Delaunay(points)
-    >>> tri.simplices, tri.neighbors, tri.find_simplex(xi)
+    >>> tri.simplices, tri.neighbors, tri.transform, tri.find_simplex(xi)
+    >>> dewall.interpolate.griddata(points, values, xi)   # as scipy.interpolate.griddata
     >>> dewall.certify(points, tri.simplices)    # also on scipy's own output
 
 Every geometric decision is the sign of an exact determinant, and degenerate
@@ -11,10 +12,14 @@ perturbation: the simplices are CGAL's, on every input. See the README's
 Python section.
 """
 
+from ._compiled import _dewall  # noqa: F401  (first: it finds the compiled module, or says how to build it)
 from ._certify import Certificate, Violation, certify
-from ._delaunay import Delaunay
-from ._dewall import InvalidInput
+from ._delaunay import Delaunay, tsearch
+from ._errors import DegenerateInput, InvalidInput, InvalidOption, QhullError
 from ._generate import KINDS, generate
+from ._hull import ConvexHull, Voronoi
+from . import interpolate
 
-__all__ = ["Delaunay", "certify", "Certificate", "Violation", "generate", "KINDS", "InvalidInput"]
+__all__ = ["Delaunay", "ConvexHull", "Voronoi", "tsearch", "interpolate", "certify", "Certificate", "Violation",
+           "generate", "KINDS", "InvalidInput", "DegenerateInput", "InvalidOption", "QhullError"]
 __version__ = "0.1.0"

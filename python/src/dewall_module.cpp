@@ -14,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <cstring>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -168,6 +169,40 @@ class Triangulation {
     }, cells_);
   }
 
+  /// The pairs (i, n), i < n, of neighbouring simplices with one circumsphere:
+  /// the vertex of n opposite their shared facet lies exactly on the sphere of
+  /// i (the unperturbed test is ZERO). Voronoi merges such simplices into one
+  /// vertex, as the diagram of the unperturbed points has.
+  py::array cospherical_neighbours() {
+    return std::visit([&](auto& c) {
+      constexpr int D = std::decay_t<decltype(c)>::dimension;
+      compute_neighbors(c);
+      std::vector<std::array<std::int32_t, 2>> pairs;
+      {
+        py::gil_scoped_release release;
+        const auto points = as_points<D>(points_);
+        const auto sphere = Kernel<D>{}.side_of_oriented_sphere_unperturbed_d_object();
+        for (std::size_t i = 0; i < c.simplices.size(); ++i) {
+          for (int j = 0; j <= D; ++j) {
+            const std::int32_t n = c.neighbors[i][static_cast<std::size_t>(j)];
+            if (n < 0 || static_cast<std::size_t>(n) < i) continue;
+            // the vertex of n that is not in simplex i: the one whose neighbour is i
+            std::size_t opposite = 0;
+            for (int k = 0; k <= D; ++k)
+              if (c.neighbors[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)] == static_cast<std::int32_t>(i))
+                opposite = c.simplices[static_cast<std::size_t>(n)][static_cast<std::size_t>(k)];
+            std::array<const Point_d<D>*, D + 2> s;
+            for (int k = 0; k <= D; ++k) s[static_cast<std::size_t>(k)] = &points[c.simplices[i][static_cast<std::size_t>(k)]];
+            s[D + 1] = &points[opposite];
+            if (sphere(s) == dewall::kernel::ON_ORIENTED_BOUNDARY) pairs.push_back({static_cast<std::int32_t>(i), n});
+          }
+        }
+      }
+      const auto rows = static_cast<py::ssize_t>(pairs.size());
+      return adopt<std::int32_t>(std::move(pairs), {rows, 2});
+    }, cells_);
+  }
+
   /// For each input point, the input index of the vertex that stands for it
   /// (itself unless it duplicates an earlier point).
   py::array first_occurrences() const {
@@ -235,6 +270,72 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
     cells.simplices = std::move(t.simplices);
     return std::make_unique<Triangulation>(points, std::move(cells), t.statistics, seconds);
   });
+}
+
+/// A Triangulation over stored simplices (unpickling): no triangulation is
+/// run. The rows must be a previous result for these points (dewall.Delaunay
+/// pickles its own); indices are checked, the rest is trusted, as locate's
+/// walk needs only valid indices to terminate (it falls back to a full scan).
+std::unique_ptr<Triangulation> from_simplices(py::handle points_in, py::handle simplices_in) {
+  py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto* first = static_cast<const std::uint32_t*>(simplices.data());
+  const auto count = static_cast<std::size_t>(simplices.shape(0));
+  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
+    if (first[i] >= n) throw py::value_error("simplices: index " + std::to_string(first[i]) + " is not a point index");
+  return dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    Cells<D> cells;
+    cells.simplices.resize(count);
+    static_assert(sizeof(dewall::Simplex<D>) == (D + 1) * sizeof(std::uint32_t));
+    std::memcpy(cells.simplices.data(), first, count * sizeof(dewall::Simplex<D>));
+    return std::make_unique<Triangulation>(points, std::move(cells), dewall::Statistics{}, 0.0);
+  });
+}
+
+/// The exact predicates on rows of point indices, for constructions the
+/// Python layer makes from them (furthest-site triangulations). `kind` 0:
+/// orientation of each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]);
+/// 1: the side of the last of D + 2 indices with respect to the circumsphere of
+/// the first D + 1 (+1 inside, 0 on, -1 outside; the simplex must be
+/// positively oriented), unperturbed; 2: the same with CGAL's symbolic
+/// perturbation (never 0; the query must not be a vertex of the simplex).
+py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
+  if (kind < 0 || kind > 2) throw py::value_error("kind must be 0, 1 or 2");
+  const bool sphere = kind > 0;
+  const py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array rows = checked(rows_in, uint32, sphere ? d + 2 : d + 1, "rows");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto* index = static_cast<const std::uint32_t*>(rows.data());
+  const auto count = static_cast<std::size_t>(rows.shape(0));
+  const auto width = static_cast<std::size_t>(rows.shape(1));
+  for (std::size_t i = 0; i < count * width; ++i)
+    if (index[i] >= n) throw py::value_error("rows: index " + std::to_string(index[i]) + " is not a point index");
+  py::array_t<std::int8_t> out(static_cast<py::ssize_t>(count));
+  std::int8_t* sign = out.mutable_data();
+  dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    const auto p = as_points<D>(points);
+    const Kernel<D> k;
+    py::gil_scoped_release release;
+    for (std::size_t r = 0; r < count; ++r) {
+      const std::uint32_t* row = index + r * width;
+      if (sphere) {
+        std::array<const Point_d<D>*, D + 2> s;
+        for (std::size_t j = 0; j < std::size_t{D} + 2; ++j) s[j] = &p[row[j]];
+        sign[r] = static_cast<std::int8_t>(kind == 2 ? k.side_of_oriented_sphere_d_object()(s)
+                                                     : k.side_of_oriented_sphere_unperturbed_d_object()(s));
+      } else {
+        std::array<const Point_d<D>*, D + 1> s;
+        for (std::size_t j = 0; j < std::size_t{D} + 1; ++j) s[j] = &p[row[j]];
+        sign[r] = static_cast<std::int8_t>(k.orientation_d_object()(s));
+      }
+    }
+  });
+  return out;
 }
 
 py::dict violation_dict(const dewall::certify::Violation& v) {
@@ -322,9 +423,12 @@ PYBIND11_MODULE(_dewall, m) {
       .def("simplices", [](py::object self) { return self.cast<Triangulation&>().simplices(self); })
       .def("neighbors", [](py::object self) { return self.cast<Triangulation&>().neighbors(self); })
       .def("locate", &Triangulation::locate, py::arg("xi"))
-      .def("first_occurrences", &Triangulation::first_occurrences);
+      .def("first_occurrences", &Triangulation::first_occurrences)
+      .def("cospherical_neighbours", &Triangulation::cospherical_neighbours);
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
+  m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
+  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

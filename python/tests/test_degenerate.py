@@ -68,9 +68,13 @@ def test_find_simplex_on_a_grid_is_exact():
     # Points on shared faces and edges of the lattice: inside some closed simplex.
     inside = np.array([[1.5, 1.5, 1.5], [1, 1, 1.5], [0, 0, 0], [3, 3, 3], [1.5, 0, 0]])
     assert (tri.find_simplex(inside) >= 0).all()
-    # Outside by the smallest margin a double allows: still outside.
+    # Outside by the smallest margin a double allows: outside for the exact test (tol=0);
+    # with scipy's default tolerance (100 eps) each gets a hull simplex, as scipy's does.
     outside = np.array([[np.nextafter(3.0, 4.0), 1, 1], [1, np.nextafter(0.0, -1.0), 1], [-1e-300, 2, 2]])
-    assert (tri.find_simplex(outside) == -1).all()
+    assert (tri.find_simplex(outside, tol=0) == -1).all()
+    found = tri.find_simplex(outside)
+    assert (found >= 0).all()
+    assert (tri.find_simplex(outside + [[1e-9, 0, 0], [0, -1e-9, 0], [-1e-9, 0, 0]]) == -1).all()
 
 
 def test_duplicates_map_to_first_occurrence():

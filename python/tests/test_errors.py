@@ -113,3 +113,44 @@ def test_direct_module_calls_are_checked():
         _dewall.triangulate(np.ones((5, 6))[:, ::2])
     with pytest.raises(TypeError):
         _dewall.triangulate([[0.0, 1.0]])
+
+
+def test_scipy_code_catches_what_it_caught():
+    """Where scipy raises QhullError (too few points, flat input), ours is a QhullError and a
+    ValueError; where scipy raises ValueError (NaN), ours is a ValueError only."""
+    from scipy.spatial import Delaunay as ScipyDelaunay
+    from scipy.spatial import QhullError
+
+    assert dewall.QhullError is QhullError
+    flat = cube()
+    flat[:, 2] = 0
+    for points in (flat, cube()[:2], np.zeros((5, 3))):
+        with pytest.raises(QhullError):
+            ScipyDelaunay(points)
+        with pytest.raises(QhullError) as error:
+            dewall.Delaunay(points)
+        assert isinstance(error.value, ValueError) and isinstance(error.value, dewall.InvalidInput)
+        assert isinstance(error.value, dewall.DegenerateInput) and error.value.point is None
+    nan = cube()
+    nan[1, 1] = np.nan
+    with pytest.raises(ValueError) as error:
+        dewall.Delaunay(nan)
+    assert not isinstance(error.value, QhullError) and error.value.point == 1
+
+
+def test_importing_from_the_source_tree(tmp_path):
+    """PYTHONPATH=python (the source tree) finds the build's compiled module, or says how to build
+    it, instead of Python's "partially initialized module ... circular import"."""
+    import os
+    import subprocess
+    import sys
+
+    source = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    code = "import dewall; print(dewall.Delaunay([[0, 0], [1, 0], [0, 1]]).nsimplex)"
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path,
+                         env={**os.environ, "PYTHONPATH": source})
+    built = os.path.isdir(os.path.join(os.path.dirname(source), "build", "python", "dewall"))
+    if built:
+        assert run.returncode == 0 and run.stdout.strip() == "1", run.stderr
+    else:
+        assert "circular import" not in run.stderr and "scripts/build.sh dewall_python" in run.stderr

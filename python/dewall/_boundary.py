@@ -1,0 +1,101 @@
+"""The convex hull's boundary on its extreme points, exactly: what ConvexHull reports and where
+the furthest-site construction starts. Every decision is an orientation sign of the library
+(_dewall.predicate_signs); the Delaunay triangulation's boundary facets are the input.
+"""
+
+import numpy as np
+
+from . import _dewall
+
+
+def extreme_hull_edges_2d(points, simplices, neighbors):
+    """2-D: the convex hull's edges between its extreme points (rows of 2 indices). The
+    Delaunay triangulation's hull edges also pass through the points inside hull edges (a grid's
+    sides); those are dropped here, exactly (orientation ZERO with their two neighbours on the
+    boundary), so the furthest-site construction can start from a proper edge."""
+    simplex, opposite = np.nonzero(neighbors == -1)
+    after = {}
+    for s, j in zip(simplex, opposite):  # counterclockwise along the boundary (positively oriented triangles)
+        after[int(simplices[s, (j + 1) % 3])] = int(simplices[s, (j + 2) % 3])
+    ring = [next(iter(after))]
+    while after[ring[-1]] != ring[0]:
+        ring.append(after[ring[-1]])
+    ring = np.array(ring)
+    triples = np.column_stack((np.roll(ring, 1), ring, np.roll(ring, -1)))
+    extreme = ring[_dewall.predicate_signs(points, triples.astype(np.uint32), 0) != 0]
+    return np.column_stack((extreme, np.roll(extreme, -1)))
+
+
+def extreme_facets_3d(points, simplices, neighbors, convex_hull):
+    """3-D hull facets on the extreme points only: the Delaunay boundary triangles, where several
+    lie in one plane (exact orientation ZERO across their shared edge), replaced by a fan over the
+    corners of that flat face (its boundary cycle without the points inside its edges); points
+    inside a face drop out with its inner triangles. Returns (facets, a point inside for each,
+    whether each facet is a whole face of the hull: a triangle of its own, not part of a fan)."""
+    simplex, opposite = np.nonzero(neighbors == -1)
+    facets = convex_hull.astype(np.int64)
+    inside = simplices[simplex, opposite].astype(np.int64)
+
+    def orientation(rows):
+        return _dewall.predicate_signs(points, np.ascontiguousarray(rows, dtype=np.uint32), 0)
+
+    # counterclockwise seen from outside: the inside point on the negative side
+    flip = orientation(np.column_stack((facets, inside))) > 0
+    facets[flip] = facets[flip][:, [0, 2, 1]]
+    neighbors = ridge_pairs(facets)
+    i, j = np.nonzero(neighbors >= 0)
+    n = neighbors[i, j]
+    other = np.array([[v for v in facets[b] if v not in facets[a]][0] for a, b in zip(i, n)], dtype=np.int64)
+    flat = orientation(np.column_stack((facets[i], other))) == 0
+    if not flat.any():
+        return facets.astype(np.int32), inside, np.ones(len(facets), dtype=bool)
+    parent = np.arange(len(facets))
+
+    def root(x):
+        while parent[x] != x:
+            parent[x] = parent[parent[x]]
+            x = parent[x]
+        return x
+
+    for a, b in zip(i[flat], n[flat]):
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[max(ra, rb)] = min(ra, rb)
+    groups = {}
+    for f in range(len(facets)):
+        groups.setdefault(root(f), []).append(f)
+    out, out_inside, whole = [], [], []
+    for members in groups.values():
+        if len(members) == 1:
+            out.append(facets[members[0]])
+            out_inside.append(inside[members[0]])
+            whole.append(True)
+            continue
+        directed = {(int(f[k]), int(f[(k + 1) % 3])) for f in facets[members] for k in range(3)}
+        after = {a: b for a, b in directed if (b, a) not in directed}  # the face's boundary, counterclockwise
+        ring = [next(iter(after))]
+        while after[ring[-1]] != ring[0]:
+            ring.append(after[ring[-1]])
+        ring = np.array(ring)
+        below = inside[members[0]]
+        triples = np.column_stack((np.roll(ring, 1), ring, np.roll(ring, -1), np.full(len(ring), below)))
+        corners = ring[orientation(triples) != 0]  # collinear with its neighbours: inside an edge
+        for k in range(1, len(corners) - 1):
+            out.append([corners[0], corners[k], corners[k + 1]])
+            out_inside.append(below)
+            whole.append(len(corners) == 3)
+    return np.array(out, dtype=np.int32), np.array(out_inside, dtype=np.int64), np.array(whole)
+
+
+def ridge_pairs(facets):
+    """Each facet's ridges (the facet without its vertex j) matched in pairs: neighbors[i, j]
+    is the facet sharing the ridge of facet i opposite its vertex j (-1 when none)."""
+    m, k = facets.shape
+    ridges = np.sort(np.stack([np.delete(facets, j, axis=1) for j in range(k)], axis=1), axis=2)  # (m, k, k-1)
+    flat = ridges.reshape(m * k, k - 1)
+    order = np.lexsort(flat.T[::-1])
+    same = np.all(flat[order][1:] == flat[order][:-1], axis=1)
+    neighbors = np.full(m * k, -1, dtype=np.int32)
+    first, second = order[:-1][same], order[1:][same]
+    neighbors[first], neighbors[second] = second // k, first // k
+    return neighbors.reshape(m, k)

@@ -1,0 +1,359 @@
+"""dewall.ConvexHull and dewall.Voronoi: scipy.spatial's interfaces, from the exact Delaunay triangulation.
+
+The hull facets are the Delaunay triangulation's boundary facets, the Voronoi
+vertices its circumcentres (simplices with exactly one circumsphere, decided by
+the exact unperturbed sphere test, give one vertex), the Voronoi ridges the duals
+of its edges. Topology is exact; coordinates, normals, volumes are floating
+point from the points.
+"""
+
+import numpy as np
+
+from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, ridge_pairs
+from ._delaunay import Delaunay, _determinants, _option_in_effect
+
+__all__ = ["ConvexHull", "Voronoi"]
+
+
+class _FromDelaunay:
+    """Construction, incremental mode and bounds shared by ConvexHull and Voronoi."""
+
+    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None,
+                 furthest_site=False):
+        self._tri = Delaunay(points, furthest_site, incremental, qhull_options, engine=engine, threads=threads)
+        self._update()
+
+    def _update(self):
+        tri = self._tri
+        self.points, self.ndim, self.npoints = tri.points, tri.ndim, tri.npoints
+        self.min_bound, self.max_bound = tri.min_bound, tri.max_bound
+        self.furthest_site = tri.furthest_site
+        self._compute()
+
+    def add_points(self, points, restart=False):
+        """As scipy: needs incremental=True and no close(); dewall recomputes from all the points."""
+        self._tri.add_points(points, restart)
+        self._update()
+
+    def close(self):
+        self._tri.close()
+
+
+class ConvexHull(_FromDelaunay):
+    """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
+
+    ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+
+    Attributes (as scipy's): points, vertices (2-D: counterclockwise), simplices (the facets,
+    triangulated), neighbors, equations (outward unit normal, offset; normal . x + offset <= 0
+    inside), coplanar, good (None), volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
+
+    The facets are the boundary facets of the exact Delaunay triangulation, so on random
+    points they are Qhull's. In 2-D and 3-D only the extreme points are vertices, as Qhull's:
+    points inside a hull edge or flat face (a grid's sides, a cube's faces) are set aside
+    exactly, and a flat face is a fan over its corners. In 4-D and up such points are still
+    vertices here, each flat facet triangulated by CGAL's perturbation. `coplanar` is empty:
+    Qhull (option Qc) lists points it could not place for rounding, and neither boundary
+    points nor duplicates (checked with scipy 1.10).
+    """
+
+    def _compute(self):
+        tri = self._tri
+        d = self.ndim
+        full = self.points[tri.simplices]
+        factorial = float(np.prod(np.arange(1, d + 1)))
+        self.volume = float(np.abs(_determinants(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
+        if d == 2:
+            self._boundary_2d()
+        else:
+            extreme = None
+            if d == 3:
+                extreme = extreme_facets_3d(self.points, tri.simplices, tri.neighbors, tri.convex_hull)[:2]
+            self._boundary(factorial, extreme)
+        self.nsimplex = self.simplices.shape[0]
+        self.coplanar = np.empty((0, 3), dtype=np.int32)
+        self.good = None
+
+    def _boundary_2d(self):
+        """2-D: the polygon of the extreme points, counterclockwise; facet i runs from vertex i to
+        vertex i + 1, its neighbours are facets i + 1 (opposite its first vertex) and i - 1."""
+        tri = self._tri
+        edges = extreme_hull_edges_2d(self.points, tri.simplices, tri.neighbors)
+        k = np.arange(len(edges))
+        self.simplices = edges.astype(np.int32)
+        self.vertices = edges[:, 0].astype(np.int32)
+        self.neighbors = np.column_stack(((k + 1) % len(k), (k - 1) % len(k))).astype(np.int32)
+        start = self.points[edges[:, 0]]
+        delta = self.points[edges[:, 1]] - start
+        length = np.hypot(delta[:, 0], delta[:, 1])
+        normal = np.column_stack((delta[:, 1], -delta[:, 0])) / length[:, None]  # right of a counterclockwise edge
+        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, start)))
+        self.area = float(length.sum())
+
+    def _boundary(self, factorial, extreme=None):
+        """3-D and up: the Delaunay triangulation's boundary facets, or `extreme` (facets, a point
+        inside for each) when given."""
+        tri, d = self._tri, self.ndim
+        if extreme is None:
+            simplex, opposite = np.nonzero(tri.neighbors == -1)
+            self.simplices, inside = tri.convex_hull, tri.simplices[simplex, opposite]
+        else:
+            self.simplices, inside = extreme
+        self.neighbors = ridge_pairs(self.simplices)
+        self.vertices = np.unique(self.simplices).astype(np.int32)
+        corners = self.points[self.simplices]  # (m, d, d)
+        edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
+        normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
+        inner = self.points[inside]  # a point inside: the simplex's other vertex
+        normal *= np.where(np.einsum("ij,ij->i", normal, inner - corners[:, 0, :]) > 0, -1.0, 1.0)[:, None]
+        length = np.linalg.norm(normal, axis=1)
+        normal /= length[:, None]
+        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, corners[:, 0, :])))
+        self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure
+
+
+class Voronoi(_FromDelaunay):
+    """The Voronoi diagram of points in E^d (d = 2 … 6), with scipy.spatial.Voronoi's interface.
+
+    Voronoi(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+
+    Attributes (as scipy's): points, vertices, ridge_points, ridge_vertices, regions,
+    point_region, ridge_dict, furthest_site, min_bound, max_bound, ndim, npoints.
+
+    Vertices are the circumcentres of the Delaunay simplices, one for each set of
+    neighbouring simplices with exactly one circumsphere (the exact unperturbed sphere
+    test): four cocircular points give one vertex, where Qhull may give several nearly
+    equal ones. A ridge is listed for each Delaunay edge whose dual has at least d distinct
+    vertices (counting -1, the vertex at infinity, for a hull edge): edges inside a
+    cospherical cell, whose dual collapsed, are not ridges. Regions: one per distinct input
+    point (the circumcentres around it, -1 when the region is unbounded; in 2-D in
+    counterclockwise order, in 3-D ridges in cyclic order), after an empty one first (Qhull's
+    point at infinity, option Qz: present when scipy's would be, i.e. with the default options
+    or "Qz" in qhull_options, not incremental, not furthest site); a duplicate point shares its
+    first occurrence's region. furthest_site=True:
+    the furthest-site diagram, from Delaunay(furthest_site=True) (its rules on ties); points
+    inside the hull get an empty region, and there is no point at infinity (as Qhull's).
+    """
+
+    def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
+                 threads=None):
+        super().__init__(points, incremental, qhull_options, engine=engine, threads=threads,
+                         furthest_site=furthest_site)
+
+    def _compute(self):
+        tri = self._tri
+        d, simplices = self.ndim, tri.simplices.astype(np.int64)
+        group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
+        self.vertices = _circumcentres(self.points, tri.simplices, group)
+        if d == 2:
+            self.ridge_points, self.ridge_vertices = self._ridges_2d(group)
+        elif d == 3:
+            self.ridge_points, self.ridge_vertices = self._ridges_3d(group)
+        else:
+            self.ridge_points, self.ridge_vertices = self._ridges(group, simplices)
+        # Regions: the vertices around each distinct point (first occurrences; [] for no vertex).
+        first = np.arange(self.npoints)
+        dup = tri.duplicates
+        first[dup[:, 0]] = dup[:, 1]
+        around = self._regions_2d(group) if d == 2 else self._regions(group)
+        # Qhull's point at infinity (option Qz: scipy's default, not with furthest_site or incremental)
+        # has an empty region; Qhull's lands among the others, dewall's first.
+        at_infinity = (_option_in_effect(tri._qhull_options, "Qz") and not self.furthest_site
+                       and not tri._incremental)
+        self.regions, self.point_region = [[]] if at_infinity else [], np.empty(self.npoints, dtype=np.intp)
+        for i in np.nonzero(first == np.arange(self.npoints))[0]:
+            self.point_region[i] = len(self.regions)
+            self.regions.append(around[i])
+        self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
+
+    def _ridges_2d(self, group):
+        """2-D ridges, vectorised: each triangle edge with its two Voronoi vertices (the groups of
+        the triangles on either side, -1 first beyond the hull); none inside a cocircular cell."""
+        tri = self._tri
+        s, j = np.nonzero(np.ones(tri.neighbors.shape, dtype=bool))
+        n = tri.neighbors[s, j].astype(np.int64)
+        once = (n == -1) | (s < n)
+        s, j, n = s[once], j[once], n[once]
+        mine, theirs = group[s], np.where(n == -1, -1, group[np.maximum(n, 0)])
+        proper = mine != theirs
+        pairs = np.sort(np.column_stack((tri.simplices[s, (j + 1) % 3], tri.simplices[s, (j + 2) % 3])), axis=1)
+        pairs, vertices = pairs[proper], np.column_stack((theirs, mine))[proper]
+        order = np.lexsort((pairs[:, 1], pairs[:, 0]))
+        return pairs[order].astype(np.int32), vertices[order].tolist()
+
+    def _ridges_3d(self, group):
+        """3-D ridges, vectorised: the tetrahedra around each edge in cyclic order (the walk across
+        the facets through the edge, always turning the same way, by list ranking), their groups
+        deduplicated, -1 first for a hull edge; kept when at least 3 distinct vertices remain."""
+        tri = self._tri
+        simplices = tri.simplices.astype(np.int64)
+        m = simplices.shape[0]
+        a, b = np.triu_indices(4, 1)  # the 6 edges of a tetrahedron, as positions (i, j), i < j
+        others = np.array([[k for k in range(4) if k not in (i, j)] for i, j in zip(a, b)])  # (6, 2)
+        # parity of the permutation (i, j, k, l) of (0, 1, 2, 3): the turning direction around i -> j
+        odd = np.array([(np.linalg.det(np.eye(4)[[i, j, k, l]]) < 0) for (i, j), (k, l) in zip(zip(a, b), others)])
+        owner = np.repeat(np.arange(m), 6)
+        slot = np.tile(np.arange(6), m)
+        p, q = simplices[owner, a[slot]], simplices[owner, b[slot]]
+        flip = p > q  # edges as (smaller, larger): the direction of p -> q flips the turn
+        # cross the facet opposite others[.., 0] or [.., 1]: the same turn in every tetrahedron
+        leave = others[slot, (odd[slot] ^ flip).astype(int)]
+        edge_key = np.minimum(p, q) * self.npoints + np.maximum(p, q)
+        keys, edge = np.unique(edge_key, return_inverse=True)
+        after = tri.neighbors[owner, leave].astype(np.int64)
+        valid = after >= 0
+        # the same edge's incidence in the next tetrahedron: its slot there
+        incidence = np.arange(6 * m)
+        order = np.lexsort((owner, edge))  # incidences sorted by (edge, owner): find (edge, after) by search
+        sorted_key = edge[order] * m + owner[order]
+        target = np.searchsorted(sorted_key, edge * m + np.maximum(after, 0))
+        successor = np.where(valid, order[np.minimum(target, order.size - 1)], -1)
+        has_predecessor = np.zeros(6 * m, dtype=bool)
+        has_predecessor[successor[valid]] = True
+        chain = np.zeros(keys.size, dtype=bool)
+        chain[edge[~has_predecessor]] = True
+        cycle = ~chain[edge]
+        start = np.full(keys.size, 6 * m)
+        np.minimum.at(start, edge[cycle], incidence[cycle])
+        successor[cycle & (successor == start[edge])] = -1
+        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
+        while (pointer >= 0).any():
+            live = np.nonzero(pointer >= 0)[0]
+            target = pointer[live]
+            rank[live] += rank[target]
+            pointer[live] = pointer[target]
+        order = np.lexsort((-rank, edge))
+        edges, groups = edge[order], group[owner[order]]
+        new = np.r_[True, (edges[1:] != edges[:-1]) | (groups[1:] != groups[:-1])]
+        edges, groups = edges[new], groups[new]
+        ridges = np.split(groups, np.cumsum(np.bincount(edges, minlength=keys.size))[:-1])
+        ridge_points, ridge_vertices = [], []
+        for e, part in enumerate(ridges):
+            around = part.tolist()
+            if chain[e]:
+                around.insert(0, -1)
+            elif len(around) > 1 and around[0] == around[-1]:
+                around.pop()
+            if len(around) >= 3:
+                ridge_points.append(divmod(int(keys[e]), self.npoints))
+                ridge_vertices.append(around)
+        return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
+
+    def _ridges(self, group, simplices):
+        """Ridges in 4-D and up: each Delaunay edge whose dual has at least d distinct vertices
+        (unordered: a ridge there is a polytope of dimension 3 or more)."""
+        tri, d = self._tri, self.ndim
+        a, b = np.triu_indices(d + 1, 1)
+        edges = np.sort(np.stack((simplices[:, a], simplices[:, b]), axis=2), axis=2).reshape(-1, 2)
+        owner = np.repeat(np.arange(tri.nsimplex), a.size)
+        order = np.lexsort((edges[:, 1], edges[:, 0]))
+        edges, owner = edges[order], owner[order]
+        starts = np.r_[0, np.nonzero(np.any(edges[1:] != edges[:-1], axis=1))[0] + 1]
+        hull_edges = _hull_edges(tri)
+        ridge_points, ridge_vertices = [], []
+        for start, stop in zip(starts, np.r_[starts[1:], len(edges)]):
+            p, q = map(int, edges[start])
+            around = list(dict.fromkeys(int(g) for g in group[owner[start:stop]]))
+            unbounded = (p, q) in hull_edges
+            if unbounded:
+                around.insert(0, -1)
+            if len(around) < d:
+                continue
+            ridge_points.append((p, q))
+            ridge_vertices.append(around)
+        return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
+
+    def _regions(self, group):
+        """Regions in 3-D and up: the groups of each point's simplices (ascending), -1 first on the hull."""
+        tri, d = self._tri, self.ndim
+        pairs = np.unique(np.column_stack((tri.simplices.ravel(), np.repeat(group, d + 1))), axis=0)
+        on_hull = np.zeros(self.npoints, dtype=bool)
+        on_hull[tri.convex_hull] = True
+        split = np.split(pairs[:, 1], np.cumsum(np.bincount(pairs[:, 0], minlength=self.npoints))[:-1])
+        return [([-1] if on_hull[i] else []) + part.tolist() if part.size else [] for i, part in enumerate(split)]
+
+    def _regions_2d(self, group):
+        """2-D regions counterclockwise, vectorised: the triangles around each point, in the order
+        of the walk across the edges through it (topology, not angles), by list ranking. An
+        unbounded region runs from the triangle after the hull to the one before it, then -1."""
+        tri = self._tri
+        simplices = tri.simplices.astype(np.int64)
+        m = simplices.shape[0]
+        incidence = np.arange(3 * m)
+        owner, position, vertex = incidence // 3, incidence % 3, simplices.ravel()
+        # the next triangle counterclockwise around `vertex`: across the edge (vertex, the one after next)
+        after = tri.neighbors[owner, (position + 1) % 3].astype(np.int64)
+        valid = after >= 0
+        where = np.argmax(simplices[np.maximum(after, 0)] == vertex[:, None], axis=1)
+        successor = np.where(valid, 3 * after + where, -1)
+        has_predecessor = np.zeros(3 * m, dtype=bool)
+        has_predecessor[successor[valid]] = True
+        chain = np.zeros(self.npoints, dtype=bool)  # a point on the hull: its triangles form a chain
+        chain[vertex[~has_predecessor]] = True
+        cycle = ~chain[vertex]
+        start = np.full(self.npoints, 3 * m)
+        np.minimum.at(start, vertex[cycle], incidence[cycle])
+        successor[cycle & (successor == start[vertex])] = -1  # open each cycle before its first triangle
+        # list ranking by pointer jumping: rank = steps to the end of the chain
+        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
+        while (pointer >= 0).any():
+            live = np.nonzero(pointer >= 0)[0]
+            target = pointer[live]
+            rank[live] += rank[target]
+            pointer[live] = pointer[target]
+        order = np.lexsort((-rank, vertex))
+        sites, groups = vertex[order], group[owner[order]]
+        new = np.r_[True, (sites[1:] != sites[:-1]) | (groups[1:] != groups[:-1])]  # merged cells: one vertex
+        sites, groups = sites[new], groups[new]
+        counts = np.bincount(sites, minlength=self.npoints)
+        regions = [part.tolist() for part in np.split(groups, np.cumsum(counts)[:-1])]
+        for i, region in enumerate(regions):
+            if not region:
+                continue
+            if chain[i]:
+                region.append(-1)
+            elif len(region) > 1 and region[0] == region[-1]:  # a merged cell met again at the wrap
+                region.pop()
+        return regions
+
+    @property
+    def ridge_dict(self):
+        """{(p, q): ridge vertices} for each ridge, as scipy's."""
+        return {tuple(map(int, pq)): v for pq, v in zip(self.ridge_points, self.ridge_vertices)}
+
+
+def _merge(count, pairs):
+    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find)."""
+    parent = np.arange(count)
+
+    def root(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, n in pairs:
+        ri, rn = root(i), root(n)
+        if ri != rn:
+            parent[max(ri, rn)] = min(ri, rn)
+    roots = np.array([root(i) for i in range(count)]) if len(pairs) else parent
+    _, group = np.unique(roots, return_inverse=True)
+    return group
+
+
+def _circumcentres(points, simplices, group):
+    """Circumcentre of the first simplex of each group: solve 2 (v_j - v_0) . c = |v_j|^2 - |v_0|^2,
+    relative to v_0 for accuracy."""
+    _, first = np.unique(group, return_index=True)
+    v = points[simplices[first]]
+    edges = v[:, 1:, :] - v[:, :1, :]
+    rhs = 0.5 * np.einsum("ijk,ijk->ij", edges, edges)
+    return v[:, 0, :] + np.linalg.solve(edges, rhs[:, :, None])[:, :, 0]
+
+
+def _hull_edges(tri):
+    """The Delaunay edges on the convex hull, as sorted (p, q) tuples."""
+    hull = tri.convex_hull
+    a, b = np.triu_indices(hull.shape[1], 1)
+    pairs = np.sort(np.stack((hull[:, a], hull[:, b]), axis=2), axis=2).reshape(-1, 2)
+    return set(map(tuple, np.unique(pairs, axis=0).tolist()))

@@ -1,0 +1,226 @@
+"""dewall.ConvexHull and dewall.Voronoi against scipy.spatial's on the same points (compared as
+sets), plus cases ported from scipy 1.10's test_qhull.py (TestConvexHull, TestVoronoi)."""
+
+import numpy as np
+import pytest
+import scipy.spatial as ss
+
+import dewall
+from conftest import simplex_set
+
+
+def nearest_rows(reference, coordinates):
+    """For each row of coordinates, the index of the equal (to 1e-9) row of reference."""
+    distance = np.linalg.norm(coordinates[:, None, :] - reference[None, :, :], axis=2)
+    rows = distance.argmin(axis=1)
+    assert (distance[np.arange(len(rows)), rows] < 1e-9).all()
+    return rows
+
+
+@pytest.mark.parametrize("d, n", [(2, 150), (3, 80), (4, 40)])
+def test_convex_hull_equals_scipy(d, n, rng):
+    points = rng.random((n, d))
+    ours, theirs = dewall.ConvexHull(points), ss.ConvexHull(points)
+    assert simplex_set(ours.simplices) == simplex_set(theirs.simplices)
+    assert ours.volume == pytest.approx(theirs.volume, rel=1e-12)
+    assert ours.area == pytest.approx(theirs.area, rel=1e-12)
+    np.testing.assert_array_equal(np.sort(ours.vertices), np.sort(theirs.vertices))
+    row = {tuple(sorted(f)): i for i, f in enumerate(theirs.simplices)}
+    match = [row[tuple(sorted(f))] for f in ours.simplices]
+    np.testing.assert_allclose(ours.equations, theirs.equations[match], atol=1e-12)
+    for i, facet in enumerate(ours.simplices):  # neighbour opposite vertex j: same vertex set as scipy's
+        for j, v in enumerate(facet):
+            k = list(theirs.simplices[match[i]]).index(v)
+            assert set(ours.simplices[ours.neighbors[i, j]]) == set(theirs.simplices[theirs.neighbors[match[i], k]])
+    assert (points @ ours.equations[:, :-1].T + ours.equations[:, -1] <= 1e-12).all()
+
+
+@pytest.mark.parametrize("d, n, furthest", [(2, 150, False), (3, 60, False), (4, 30, False), (2, 100, True),
+                                             (3, 50, True)])
+def test_voronoi_equals_scipy(d, n, furthest, rng):
+    points = rng.random((n, d))
+    ours, theirs = dewall.Voronoi(points, furthest), ss.Voronoi(points, furthest)
+    assert ours.vertices.shape == theirs.vertices.shape
+    to_theirs = nearest_rows(theirs.vertices, ours.vertices)
+
+    def mapped(vertices):
+        return frozenset(-1 if v == -1 else int(to_theirs[v]) for v in vertices)
+
+    assert ({tuple(sorted(p)): mapped(v) for p, v in zip(ours.ridge_points, ours.ridge_vertices)} ==
+            {tuple(sorted(p)): frozenset(v) for p, v in zip(theirs.ridge_points, theirs.ridge_vertices)})
+    assert len(ours.regions) == len(theirs.regions) == n + (not furthest) and ours.point_region.shape == (n,)
+    for i in range(n):
+        assert mapped(ours.regions[ours.point_region[i]]) == frozenset(theirs.regions[theirs.point_region[i]])
+    if d == 3:  # each ridge polygon in Qhull's cyclic order, up to rotation and direction
+        theirs_by_pair = {tuple(sorted(p)): v for p, v in zip(theirs.ridge_points.tolist(), theirs.ridge_vertices)}
+        for p, v in zip(ours.ridge_points.tolist(), ours.ridge_vertices):
+            mine, reference = [int(to_theirs[x]) if x >= 0 else -1 for x in v], theirs_by_pair[tuple(sorted(p))]
+            turns = [reference[i:] + reference[:i] for i in range(len(reference))]
+            assert mine in turns or mine[::-1] in turns
+    if d == 2:  # Qhull's cyclic order (in either direction: Qhull's turn either way), ours counterclockwise
+        for i in range(n):
+            region = [int(to_theirs[v]) if v >= 0 else -1 for v in ours.regions[ours.point_region[i]]]
+            reference = theirs.regions[theirs.point_region[i]]
+            if not region:
+                continue  # furthest site: a point inside the hull
+            k = reference.index(region[0])
+            backwards = reference[::-1]
+            m = backwards.index(region[0])
+            assert region in (reference[k:] + reference[:k], backwards[m:] + backwards[:m])
+            finite = [v for v in ours.regions[ours.point_region[i]] if v >= 0]
+            if len(finite) < len(region):
+                continue  # unbounded: the chain from one hull triangle to the other
+            angle = np.unwrap(np.arctan2(*(ours.vertices[finite] - points[i]).T[::-1]))
+            assert (np.diff(angle) > 0).all()
+
+
+# ---- ported from scipy's test_qhull.py ---------------------------------------------------------
+
+
+def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
+    for cls in (dewall.ConvexHull, dewall.Voronoi):
+        with pytest.raises(ValueError):
+            cls(np.ma.masked_all((4, 2)))
+    with pytest.raises(ValueError):
+        dewall.ConvexHull(np.array([(0, 0), (1, 1), (2, np.nan)]))
+
+
+def test_vertices_2d_counterclockwise(rng):  # TestConvexHull.test_vertices_2d
+    hull = dewall.ConvexHull(rng.random((30, 2)))
+    np.testing.assert_array_equal(np.unique(hull.simplices), np.sort(hull.vertices))
+    x, y = hull.points[hull.vertices].T
+    assert (np.diff(np.unwrap(np.arctan2(y - y.mean(), x - x.mean()))) > 0).all()
+
+
+def test_volume_area_cube():  # TestConvexHull.test_volume_area
+    points = np.array([(0, 0, 0), (0, 1, 0), (1, 0, 0), (1, 1, 0), (0, 0, 1), (0, 1, 1), (1, 0, 1), (1, 1, 1)])
+    hull = dewall.ConvexHull(points)
+    assert hull.volume == pytest.approx(1.0, rel=1e-14) and hull.area == pytest.approx(6.0, rel=1e-14)
+
+
+def test_2d_hull_of_a_grid_has_its_corners_only():
+    x = np.arange(4.0)
+    grid = np.array(np.meshgrid(x, x)).reshape(2, -1).T
+    grid = np.vstack((grid, grid[:2]))  # and duplicates
+    ours, theirs = dewall.ConvexHull(grid), ss.ConvexHull(grid)
+    assert simplex_set(ours.simplices) == simplex_set(theirs.simplices) == {(0, 3), (0, 12), (3, 15), (12, 15)}
+    assert set(ours.vertices) == set(theirs.vertices) and ours.coplanar.shape == theirs.coplanar.shape == (0, 3)
+    assert (ours.volume, ours.area) == (9.0, 12.0)
+    for i, facet in enumerate(ours.simplices):  # neighbours: the facet through the other vertex
+        for j in range(2):
+            assert facet[1 - j] in ours.simplices[ours.neighbors[i, j]]
+
+
+def test_3d_hull_of_a_cube_and_a_grid_has_their_corners_only():
+    import itertools
+
+    cube = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
+    on_faces = np.array([[0.5, 0.5, 0.5], [0.5, 0.5, 0], [0.5, 0, 0], [0.3, 0.6, 1]])  # inside, face, edge, face
+    grid = np.stack([a.ravel() for a in np.meshgrid(*[np.arange(4.0)] * 3)], axis=1)
+    for points in (cube, np.vstack((cube, on_faces)), grid):
+        ours, theirs = dewall.ConvexHull(points), ss.ConvexHull(points)
+        assert ours.nsimplex == theirs.nsimplex == 12  # two triangles per square face
+        np.testing.assert_array_equal(np.sort(ours.vertices), np.sort(theirs.vertices))
+        assert ours.volume == pytest.approx(theirs.volume, rel=1e-14) and ours.area == pytest.approx(theirs.area)
+        assert (points @ ours.equations[:, :-1].T + ours.equations[:, -1] <= 1e-12).all()
+        for i, facet in enumerate(ours.simplices):  # each neighbour shares the facet's other two vertices
+            for j in range(3):
+                assert set(np.delete(facet, j)) <= set(ours.simplices[ours.neighbors[i, j]])
+
+
+def test_hull_incremental(rng):  # TestConvexHull.test_incremental (bug-2850)
+    chunks = [rng.random((10, 2)), np.array([[0, 0], [0, 1], [1, 0], [1, 1]])]
+    hull = dewall.ConvexHull(chunks[0], incremental=True)
+    hull.add_points(chunks[1])
+    assert simplex_set(hull.simplices) == {(10, 11), (10, 12), (11, 13), (12, 13)}
+
+
+def test_voronoi_simple_grid():  # TestVoronoi.test_simple, as sets (scipy pins Qhull's numbering)
+    points = np.array([(x, y) for x in range(3) for y in range(3)], dtype=float)
+    vor = dewall.Voronoi(points)
+    expected = np.array([(0.5, 0.5), (0.5, 1.5), (1.5, 0.5), (1.5, 1.5)])
+    assert vor.vertices.shape == (4, 2)  # cocircular squares: one vertex each, exactly
+    to_expected = nearest_rows(expected, vor.vertices)
+    regions = {frozenset(-1 if v == -1 else int(to_expected[v]) for v in r) for r in vor.regions}
+    assert regions == {frozenset(r) for r in [[-1, 0], [-1, 0, 1], [1, -1], [-1, 2, 0], [0, 1, 3, 2], [-1, 3, 1],
+                                              [2, -1], [-1, 3, 2], [-1, 3], []]}
+    assert len(vor.ridge_points) == 12
+    assert vor.furthest_site is False
+
+
+def test_voronoi_furthest_site():  # TestVoronoi.test_furthest_site, as sets; test_furthest_site_flag
+    points = [(0, 0), (0, 1), (1, 0), (0.5, 0.5), (1.1, 1.1)]
+    vor = dewall.Voronoi(points, furthest_site=True)
+    assert vor.furthest_site is True and dewall.Voronoi(points).furthest_site is False
+    expected = np.array([(0.6000000000000001, 0.5), (0.5, 0.6000000000000001)])  # qvoronoi Qu's output
+    to_expected = nearest_rows(expected, vor.vertices)
+
+    def mapped(vertices):
+        return tuple(sorted(-1 if v == -1 else int(to_expected[v]) for v in vertices))
+
+    assert [mapped(vor.regions[vor.point_region[i]]) for i in range(5)] == [(-1, 0, 1), (-1, 0), (-1, 1), (),
+                                                                            (-1, 0, 1)]
+    assert sorted((tuple(sorted(p)), mapped(v)) for p, v in zip(vor.ridge_points, vor.ridge_vertices)) == [
+        ((0, 1), (-1, 0)), ((0, 2), (-1, 1)), ((0, 4), (0, 1)), ((1, 4), (-1, 0)), ((2, 4), (-1, 1))]
+
+
+@pytest.mark.parametrize("d", [2, 3, 4])
+def test_ridges_separate_nearest_neighbours(d, rng):  # TestVoronoi.test_ridges
+    points = rng.random((30, d))
+    tree = ss.cKDTree(points)
+    vor = dewall.Voronoi(points)
+    for (p, q), v in vor.ridge_dict.items():
+        if min(v) < 0:
+            continue
+        middle = vor.vertices[v].mean(axis=0)
+        step = 1e-6 * (points[p] - middle)
+        assert tree.query(middle + step)[1] == p and tree.query(middle - step)[1] == q
+
+
+def test_cospherical_points_give_one_vertex():
+    import itertools
+
+    corners = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
+    for points in (corners, np.vstack((corners, [[0.5, 0.5, 0.5]]))):
+        ours, theirs = dewall.Voronoi(points), ss.Voronoi(points)
+        assert ours.vertices.shape == theirs.vertices.shape  # 1, then 6: one per cospherical cell
+        np.testing.assert_allclose(np.sort(ours.vertices, axis=0), np.sort(theirs.vertices, axis=0), atol=1e-12)
+        assert simplex_set(ours.ridge_points) == simplex_set(theirs.ridge_points)  # none, then 20
+    assert dewall.Voronoi(corners).regions == [[]] + [[-1, 0]] * 8
+
+
+@pytest.mark.parametrize("options, extra", [("Qbb Qc Qz", 1), ("Qbb Qc", 0)])
+@pytest.mark.parametrize("n, ndim", [(50, 2), (100, 3)])
+def test_point_region_structure(n, ndim, options, extra):  # TestVoronoi.test_point_region_structure (gh-16773)
+    points = np.random.default_rng(7790).random((n, ndim))
+    vor = dewall.Voronoi(points, qhull_options=options)
+    assert vor.point_region.max() == n - 1 + extra and vor.point_region.size == len(vor.regions) - extra == n
+    sizes = [len(r) for r in vor.regions]
+    assert sizes.count(0) == extra
+    if extra:
+        assert sizes.index(0) not in vor.point_region
+    assert len(dewall.Voronoi(points, incremental=True).regions) == n  # no Qz in incremental mode, as scipy's
+
+
+@pytest.mark.parametrize("d, n", [(2, 30), (3, 30), (4, 30), (5, 30), (6, 10)])
+def test_hull_consistency_tri(d, n, rng):  # TestConvexHull.test_hull_consistency_tri (random datasets)
+    points = rng.random((n, d))
+    hull = dewall.ConvexHull(points)
+    assert simplex_set(dewall.Delaunay(points).convex_hull) == simplex_set(hull.simplices)
+    assert simplex_set(hull.simplices) == simplex_set(ss.ConvexHull(points).simplices)
+    np.testing.assert_array_equal(np.unique(hull.simplices), np.sort(hull.vertices))
+
+
+def test_3d_ridges_in_cyclic_order(rng):
+    points = rng.random((60, 3))
+    vor = dewall.Voronoi(points)
+    for (p, q), ridge in vor.ridge_dict.items():
+        finite = vor.vertices[[v for v in ridge if v >= 0]]
+        if len(finite) < 3:
+            continue
+        # consecutive edges turn the same way around the edge pq: a convex polygon, in order
+        axis = points[q] - points[p]
+        m = len(finite)
+        turns = [np.dot(np.cross(finite[(k + 1) % m] - finite[k], finite[(k + 2) % m] - finite[(k + 1) % m]), axis)
+                 for k in range(m - (2 if -1 in ridge else 0))]
+        assert (np.array(turns) > 0).all() or (np.array(turns) < 0).all()
