@@ -39,6 +39,15 @@ TEST_CASE("command line: triangulate and its errors", "[cli]") {
     CHECK(r.status == 0);
     CHECK(!r.out.empty());
   }
+  SECTION("more threads than the affinity mask allows: capped, no TBB warning") {
+    REQUIRE(std::system("taskset -c 0 true > /dev/null 2>&1") == 0);  // util-linux: essential on Debian
+    cli.write("grid.txt", "0 0\n1 0\n0 1\n1 1\n2 0\n2 1\n0 2\n1 2\n2 2\n");
+    const auto one = cli("triangulate grid.txt --threads 1");
+    const auto capped = cli("triangulate grid.txt --threads 2", "taskset -c 0 ");
+    CHECK(capped.status == 0);
+    CHECK(capped.err.empty());
+    CHECK(capped.out == one.out);
+  }
   SECTION("truncated rbox file") {
     const auto r = run_cli("triangulate -", "3 rbox 5 D3\n5\n0 0 0\n1 0 0\n0 1 0\n");
     CHECK(r.status == 2);

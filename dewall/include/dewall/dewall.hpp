@@ -25,6 +25,7 @@
 // in the caller's file, which then must not use such flags (floating_point.hpp).
 #pragma once
 
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -108,7 +109,11 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
     group.run_and_wait([&] { statistics = run_engine<K>(points, options, k, output); });
     return statistics;
   };
-  if (options.threads == 0) return isolated();
+  // More threads than the process may run on (its affinity mask) are capped:
+  // TBB would print a warning and use no more anyway, and the output is the
+  // same for every thread count.
+  const int usable = tbb::info::default_concurrency();
+  if (options.threads == 0 || options.threads >= usable) return isolated();
   tbb::task_arena arena(options.threads);
   return arena.execute(isolated);
 }
