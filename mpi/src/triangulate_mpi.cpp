@@ -500,11 +500,74 @@ class Rank_triangulation {
   }
 
   /// Step 4's questions for the cells at the block not yet verified.
+  ///
+  /// Which cells can hold a point q of another block in their perturbed
+  /// sphere (be in conflict with q)? Those cells form q's cavity, which is
+  /// connected (Bowyer–Watson; the engine's breadth-first search relies on
+  /// it), and it holds the cells whose closure holds q (strictly inside their
+  /// balls: q is not a vertex) or, for q outside conv(S), infinite cells. No
+  /// cell whose vertices are all block points holds q: the block lies on the
+  /// other side of a cut from q. So every cavity has a cell with a halo or
+  /// infinite vertex, and a walk from those cells that crosses only cells
+  /// which may hold another block's point reaches every cell in conflict with
+  /// one. The cells it does not reach are cells of DT(P) untested; on 10^6
+  /// points it tests the cells near the block's boundary only.
   void verification_queries(const detail::Incremental_delaunay<D>& dt, std::vector<std::vector<Query<D>>>& queries) {
     constexpr Index infinite = detail::Incremental_delaunay<D>::infinite;
+    enum : std::uint8_t { untested = 0, closed = 1, open = 2 };
+    std::vector<std::uint8_t> state(dt.slots(), untested);
+    std::vector<std::size_t> stack;
     for (std::size_t c = 0; c < dt.slots(); ++c) {
       if (dt.is_free(c)) continue;
+      for (const Index v : dt.cell(c))
+        if (v == infinite || dt.input_index(v) >= nb_) {
+          stack.push_back(c);
+          break;
+        }
+    }
+    std::vector<int> ranks;
+    while (!stack.empty()) {
+      const std::size_t c = stack.back();
+      stack.pop_back();
+      if (state[c] != untested) continue;
+      ranks.clear();
       const auto& cell = dt.cell(c);
+      const int slot = dt.infinite_position(c);
+      Query<D> q;
+      if (slot > D) {
+        std::array<const Coords<D>*, D + 1> s;
+        for (int i = 0; i <= D; ++i) s[i] = &points_[dt.input_index(cell[i])].x;
+        const detail::Simplex_sphere<D> sphere(s);
+        const detail::Ball_box<D>& b = sphere.enclosing_box();
+        for (int r = 0; r < c_.size; ++r)
+          if (r != c_.rank && !boxes_[r].is_empty() && b.may_meet(boxes_[r].lo, boxes_[r].hi)) ranks.push_back(r);
+        q.kind = Query<D>::ball;
+        for (int j = 0; j < D; ++j) {
+          q.d[j] = b.centre_lo[j];
+          q.d[D + j] = b.centre_hi[j];
+          q.d[2 * D + j] = b.lo[j];
+          q.d[3 * D + j] = b.hi[j];
+        }
+        q.d[4 * D] = b.bounded ? b.radius2_limit : -1.0;  // negative: not bounded, the ball may be anywhere
+      } else {
+        std::array<kernel::Point_d<D>, D + 1> f{};
+        q.kind = Query<D>::facet;
+        q.slot = slot;
+        for (int i = 0; i <= D; ++i) {
+          if (i == slot) continue;
+          f[i] = points_[dt.input_index(cell[i])];
+          for (int j = 0; j < D; ++j) q.d[i * D + j] = f[i][j];
+        }
+        for (int r = 0; r < c_.size; ++r)
+          if (r != c_.rank && !boxes_[r].is_empty() && box_reaches_beyond<D>(boxes_[r], f, slot)) ranks.push_back(r);
+      }
+      if (ranks.empty()) {
+        state[c] = closed;  // no other block's point can be in conflict with it
+        continue;
+      }
+      state[c] = open;
+      for (int i = 0; i <= D; ++i) stack.push_back(dt.neighbor(c, i));
+      // Ask about it when it is at the block and was not asked about before.
       bool at_block = false;
       Global_simplex<D> key;
       for (int i = 0; i <= D; ++i) {
@@ -519,42 +582,8 @@ class Rank_triangulation {
       if (!at_block) continue;
       std::sort(key.begin(), key.end());
       if (!verified_.insert(key).second) continue;
-      const int slot = dt.infinite_position(c);
-      if (slot > D) {
-        std::array<const Coords<D>*, D + 1> s;
-        for (int i = 0; i <= D; ++i) s[i] = &points_[dt.input_index(cell[i])].x;
-        const detail::Simplex_sphere<D> sphere(s);
-        const detail::Ball_box<D>& b = sphere.enclosing_box();
-        Query<D> q;
-        q.kind = Query<D>::ball;
-        for (int j = 0; j < D; ++j) {
-          q.d[j] = b.centre_lo[j];
-          q.d[D + j] = b.centre_hi[j];
-          q.d[2 * D + j] = b.lo[j];
-          q.d[3 * D + j] = b.hi[j];
-        }
-        q.d[4 * D] = b.bounded ? b.radius2_limit : -1.0;  // negative: not bounded, the ball may be anywhere
-        for (int r = 0; r < c_.size; ++r)
-          if (r != c_.rank && !boxes_[r].is_empty() && b.may_meet(boxes_[r].lo, boxes_[r].hi)) {
-            queries[r].push_back(q);
-            ++stats_.queries_sent;
-          }
-      } else {
-        std::array<kernel::Point_d<D>, D + 1> f{};
-        Query<D> q;
-        q.kind = Query<D>::facet;
-        q.slot = slot;
-        for (int i = 0; i <= D; ++i) {
-          if (i == slot) continue;
-          f[i] = points_[dt.input_index(cell[i])];
-          for (int j = 0; j < D; ++j) q.d[i * D + j] = f[i][j];
-        }
-        for (int r = 0; r < c_.size; ++r)
-          if (r != c_.rank && !boxes_[r].is_empty() && box_reaches_beyond<D>(boxes_[r], f, slot)) {
-            queries[r].push_back(q);
-            ++stats_.queries_sent;
-          }
-      }
+      for (const int r : ranks) queries[r].push_back(q);
+      stats_.queries_sent += ranks.size();
     }
   }
 
