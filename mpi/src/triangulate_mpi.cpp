@@ -21,8 +21,10 @@
 //  4. Halo rounds. S = the block; first, the points of other blocks within a
 //     few spacings of the block's box (a guess, for speed only). Then, until
 //     a round brings no rank a new point: build DT(S) with the library's
-//     incremental engine; for each cell incident to a block point not yet
-//     verified, ask the ranks whose block may hold a point that decides it:
+//     incremental engine (later rounds insert their new points into it); for
+//     each cell incident to a block point, not yet verified, that may hold
+//     another block's point (found by a walk: verification_queries), ask the
+//     ranks whose block may hold a point that decides it:
 //     a finite cell: the ranks whose block box may meet the closed ball
 //       (Simplex_sphere's box, proven to contain it; Ball_box::may_meet) —
 //       they answer with every point of theirs that may lie in the ball;
@@ -408,6 +410,12 @@ class Rank_triangulation {
     boxes_.resize(c.size);
     MPI_Allgather(&mine, sizeof(Box<D>), MPI_BYTE, boxes_.data(), sizeof(Box<D>), MPI_BYTE, c.comm);
     sent_.resize(c.size);
+    all_blocks_ = detail::Box<D>{Box<D>::empty().lo, Box<D>::empty().hi};
+    for (const Box<D>& b : boxes_)
+      for (int j = 0; j < D && !b.is_empty(); ++j) {
+        all_blocks_.lo[j] = std::min(all_blocks_.lo[j], b.lo[j]);
+        all_blocks_.hi[j] = std::max(all_blocks_.hi[j], b.hi[j]);
+      }
   }
 
   /// Step 4 and 5.
@@ -428,15 +436,24 @@ class Rank_triangulation {
       run_collectively(c_.comm, [&] {
         for (auto& q : queries) q.clear();
         if (nb_ == 0) return;
-        dt = detail::Incremental_delaunay<D>();
+        // The first triangulation of S is built; the points of later rounds
+        // are inserted into it (the static filter made for the box of all
+        // blocks, which holds every point a round can bring).
+        const auto coords = [&](std::size_t k) -> const Coords<D>& { return points_[k].x; };
+        bool built = spanning_;
+        if (spanning_) {
+          dt.insert_more(
+              points_.size() - in_dt_, [&](std::size_t k) -> const Coords<D>& { return coords(in_dt_ + k); },
+              [&](std::size_t k) { return in_dt_ + k; });
+        } else {
+          dt = detail::Incremental_delaunay<D>();
+          built = dt.build(points_.size(), coords, [](std::size_t k) { return k; }, &all_blocks_);
+        }
         ++stats_.builds;
-        const bool built = dt.build(
-            points_.size(), [&](std::size_t k) -> const Coords<D>& { return points_[k].x; },
-            [](std::size_t k) { return k; });
+        in_dt_ = points_.size();
         stats_.build_seconds += MPI_Wtime() - t1;
         if (!built) {
           // S does not span E^D (a flat block): ask for everything; P spans E^D.
-          spanning_ = false;
           Query<D> all;
           for (int j = 0; j < D; ++j) {
             all.d[j] = -std::numeric_limits<double>::infinity();
@@ -684,7 +701,9 @@ class Rank_triangulation {
   std::vector<std::vector<char>> sent_;       // by asking rank: the block points sent there
   Block_index<D> index_;
   std::unordered_set<Global_simplex<D>, Key_hash<D>> verified_;
-  bool spanning_ = false;
+  bool spanning_ = false;                     // dt holds DT(points_[0, in_dt_))
+  std::size_t in_dt_ = 0;
+  detail::Box<D> all_blocks_;                 // the box of every block
 };
 
 /// Step 3: the block's distinct points (smallest global index of each), by global index.

@@ -46,7 +46,7 @@ struct Statistics {
   std::size_t block_points = 0;    ///< distinct points of its block after the exchange
   std::size_t halo_points = 0;     ///< points of other blocks it fetched
   std::size_t rounds = 0;          ///< halo rounds (the same on every rank)
-  std::size_t builds = 0;          ///< triangulations built (one per round with new points)
+  std::size_t builds = 0;          ///< triangulation updates: the first build, then one insertion per round with new points
   std::size_t queries_sent = 0;    ///< ball and hull-facet questions to other ranks
   std::size_t simplices = 0;       ///< simplices this rank owns
   double decompose_seconds = 0;    ///< cuts and point exchange
