@@ -464,12 +464,16 @@ class Rank_triangulation {
           return;
         }
         spanning_ = true;
+        const double t2 = MPI_Wtime();
         verification_queries(dt, queries);
+        stats_.verify_seconds += MPI_Wtime() - t2;
       });
     }
+    const double t3 = MPI_Wtime();
     std::vector<Global_simplex<D>> owned;
     if (nb_ == 0) return owned;
     DEWALL_ASSERT(spanning_);
+    owned.reserve(dt.finite_cells() * nb_ / std::max<std::size_t>(1, in_dt_) + 16);
     for (std::size_t c = 0; c < dt.slots(); ++c) {
       if (dt.is_free(c) || dt.is_infinite(c)) continue;
       const auto& cell = dt.cell(c);
@@ -490,6 +494,7 @@ class Rank_triangulation {
       owned.push_back(s);
     }
     std::sort(owned.begin(), owned.end());
+    stats_.finish_seconds = MPI_Wtime() - t3;
     return owned;
   }
 

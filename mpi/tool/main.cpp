@@ -6,8 +6,8 @@
 // Reading: every rank checks the header and the file size itself, then reads
 // its share (points [n·r/R, n·(r+1)/R)) with pread: no rank holds all points.
 // Triangulating: dewall::mpi::triangulate. Writing: rank 0 gathers the
-// simplices (point-to-point, in chunks), sorts them (the same bytes for every
-// R) and writes them through io::Output_file: a temporary renamed over OUT
+// simplices (point-to-point, in chunks), each rank's list sorted, and merges
+// them (sorted: the same bytes for every R) and writes them through io::Output_file: a temporary renamed over OUT
 // once complete, so a failure, or a rank dying, leaves an old OUT untouched.
 // Errors: every rank learns the lowest failing rank's error and ends with it;
 // rank 0 prints it. Exit 1: the points cannot be triangulated (a non-finite
@@ -50,17 +50,20 @@ struct File_error : std::runtime_error {
 };
 
 const char* const usage_text =
-    "usage: mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats]\n"
+    "usage: mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--seed-spacings X]\n"
     "\n"
     "The Delaunay triangulation of POINTS.dwpt (the binary point format, docs/formats.md)\n"
     "computed by R ranks, each reading its share of the file; the same simplices as\n"
     "`dewall triangulate` and CGAL for every R. OUT: .dwsx (binary), .ele, or a plain\n"
     "list (one simplex per line, 0-based point indices); rank 0 writes it, sorted.\n"
-    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds)\n";
+    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds)\n"
+    "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
+    "            rank's block (default 2; 0: none); only the time changes\n";
 
 struct Arguments {
   std::string input, output;
   bool stats = false;
+  dewall::mpi::Options options;
 };
 
 Arguments parse(int argc, char** argv) {
@@ -72,6 +75,18 @@ Arguments parse(int argc, char** argv) {
   for (std::size_t i = 1; i < a.size(); ++i) {
     if (a[i] == "--help" || a[i] == "-h") throw Usage_error("");
     if (a[i] == "--stats") r.stats = true;
+    else if (a[i] == "--seed-spacings") {
+      if (i + 1 >= a.size()) throw Usage_error("--seed-spacings needs a number");
+      std::size_t used = 0;
+      double x = -1;
+      try {
+        x = std::stod(a[i + 1], &used);
+      } catch (const std::exception&) {
+      }
+      if (used != a[i + 1].size() || !(x >= 0 && x <= 1000)) throw Usage_error("--seed-spacings takes a number in [0, 1000]");
+      r.options.seed_spacings = x;
+      ++i;
+    }
     else if (a[i] == "-o" || a[i] == "--output") {
       if (i + 1 >= a.size()) throw Usage_error(a[i] + " needs a file name");
       r.output = a[++i];
@@ -187,7 +202,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int ra
     for (int j = 0; j < D; ++j) points[i][j] = share.coordinates[i * D + static_cast<std::size_t>(j)];
   dewall::mpi::Result<D> r;
   try {
-    r = dewall::mpi::triangulate<D>(comm, points, share.first);
+    r = dewall::mpi::triangulate<D>(comm, points, share.first, args.options);
   } catch (const dewall::Invalid_input& e) {
     if (rank == 0) std::fprintf(stderr, "dewall-mpi: %s: %s\n", args.input.c_str(), e.what());
     return 1;
@@ -198,6 +213,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int ra
   using S = dewall::mpi::Global_simplex<D>;
   std::vector<S> all;
   if (rank == 0) {
+    // Each rank's list comes sorted: merge them as they arrive.
     all = std::move(r.simplices);
     for (int q = 1; q < size; ++q) {
       std::uint64_t n = 0;
@@ -208,6 +224,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int ra
         const std::size_t m = std::min<std::size_t>(chunk, n - k);
         MPI_Recv(all.data() + at + k, static_cast<int>(m * sizeof(S)), MPI_BYTE, q, 1, comm, MPI_STATUS_IGNORE);
       }
+      std::inplace_merge(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(at), all.end());
     }
   } else {
     const std::uint64_t n = r.simplices.size();
@@ -220,7 +237,6 @@ int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int ra
   }
   step(comm, [&] {
     if (rank != 0) return;
-    std::sort(all.begin(), all.end());
     dewall::io::Simplex_table table;
     table.vertices_per_simplex = D + 1;
     table.indices.reserve(all.size() * (D + 1));
@@ -232,22 +248,25 @@ int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int ra
   const double t2 = MPI_Wtime();
   if (args.stats) {
     const dewall::mpi::Statistics& st = r.statistics;
-    const std::array<double, 12> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
+    const std::array<double, 14> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
                                          static_cast<double>(st.halo_points),  static_cast<double>(st.rounds),
                                          static_cast<double>(st.builds),       static_cast<double>(st.queries_sent),
                                          static_cast<double>(st.simplices),    st.decompose_seconds,
-                                         st.build_seconds,                     st.halo_seconds,
+                                         st.build_seconds,                     st.verify_seconds,
+                                         st.halo_seconds,                      st.finish_seconds,
                                          t1 - t0,                              t2 - t1};
     std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
     MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
                MPI_DOUBLE, 0, comm);
     if (rank == 0) {
-      std::fprintf(stderr, "rank  points   block    halo   halo%%  rounds builds queries simplices  decompose  build  halo  triangulate  gather+write [s]\n");
+      std::fprintf(stderr,
+                   "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds: decompose"
+                   "  build verify   halo finish | triangulate gather+write\n");
       for (int q = 0; q < size; ++q) {
         const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
-        std::fprintf(stderr, "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f %9.3f %6.3f %5.3f %11.3f %12.3f\n", q,
-                     e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[7], e[8],
-                     e[9], e[10], e[11]);
+        std::fprintf(stderr, "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %9.3f %6.3f %6.3f %6.3f %6.3f | %11.3f %12.3f\n",
+                     q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[7], e[8],
+                     e[9], e[10], e[11], e[12], e[13]);
       }
     }
   }

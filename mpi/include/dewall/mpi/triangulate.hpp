@@ -51,7 +51,9 @@ struct Statistics {
   std::size_t simplices = 0;       ///< simplices this rank owns
   double decompose_seconds = 0;    ///< cuts and point exchange
   double build_seconds = 0;        ///< triangulations
-  double halo_seconds = 0;         ///< questions, answers and their exchange
+  double halo_seconds = 0;         ///< answers and the exchanges of questions and answers
+  double verify_seconds = 0;       ///< finding the cells to ask about, and the questions
+  double finish_seconds = 0;       ///< the owned simplices taken out and sorted
 };
 
 /// The rank's share of the triangulation.
