@@ -1,8 +1,9 @@
 // dewall::mpi::triangulate against CGAL and the single-machine library, run by
 // ctest under mpiexec with 1, 2, 3, 4 and 7 ranks (tests/CMakeLists.txt).
 //
-// Every rank makes the same point set (fixed seeds), passes its share (uneven
-// shares, and some ranks none), and rank 0 gathers the simplices and checks:
+// Every rank makes the same point set (fixed seeds; 2D and 3D: eight kinds,
+// 4D: two, 5D and 6D: a few uniform points), passes its share (uneven shares,
+// and some ranks none), and rank 0 gathers the simplices and checks:
 //  * no simplex twice, each positively oriented (exact orientation), in the
 //    canonical form of Global_simplex;
 //  * the set equals CGAL's (tests/support/cgal_reference.hpp);
@@ -196,6 +197,8 @@ int main(int argc, char** argv) {
   cases<3>(2500);
   check_case<4>("uniform", generated<4>(io::Point_kind::uniform, 600, 11), Shares::even);
   check_case<4>("lattice (every point ties)", generated<4>(io::Point_kind::grid, 600, 0), Shares::even);
+  check_case<5>("uniform", generated<5>(io::Point_kind::uniform, 150, 12), Shares::growing);
+  check_case<6>("uniform", generated<6>(io::Point_kind::uniform, 60, 13), Shares::even);
   error_cases<2>();
   error_cases<3>();
   int total = 0;
