@@ -7,7 +7,8 @@
 //  * no simplex twice, each positively oriented (exact orientation), in the
 //    canonical form of Global_simplex;
 //  * the set equals CGAL's (tests/support/cgal_reference.hpp);
-//  * the set equals dewall::triangulate's on one machine.
+//  * the set equals dewall::triangulate's on one machine;
+//  * the certifier (certify/, independent of dewall/) finds it Delaunay and canonical.
 // Error cases: a NaN on one rank, points not spanning E^D, too few distinct
 // points: every rank throws Invalid_input with the same message.
 // Not Catch2: its main knows nothing of MPI; each check prints what failed,
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "dewall/certify/certify.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/kernel/orientation.hpp"
@@ -90,6 +92,7 @@ void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& 
   const std::string label = name + " (" + std::to_string(D) + "D, " + std::to_string(n) + " points, " +
                             std::to_string(size) + " ranks)";
   test::Simplex_set<D> got;
+  std::vector<certify::Simplex_indices<D>> rows;
   bool oriented = true, canonical = true;
   for (const S& s : all) {
     std::array<std::uint32_t, D + 1> t;
@@ -103,9 +106,12 @@ void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& 
     std::sort(sorted.begin(), sorted.end());
     canonical &= std::equal(s.begin(), s.end() - 2, sorted.begin()) &&
                  ((s[D - 1] == sorted[D - 1] && s[D] == sorted[D]) || (s[D - 1] == sorted[D] && s[D] == sorted[D - 1]));
+    rows.push_back(t);
     std::sort(t.begin(), t.end());
     got.insert(t);
   }
+  const certify::Report report = certify::certify<kernel::Filtered_kernel_d<D>>(points, rows);
+  if (!report.delaunay || !report.canonical) fail(label + ": the certifier rejects it");
   if (got.size() != all.size()) fail(label + ": " + std::to_string(all.size() - got.size()) + " simplices more than once");
   if (!oriented) fail(label + ": a simplex is not positively oriented");
   if (!canonical) fail(label + ": a simplex is not in canonical form");
