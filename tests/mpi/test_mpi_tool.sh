@@ -5,6 +5,7 @@
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
 #   * no -o: exit 2, the usage once;
+#   * a rank that exits early: mpiexec ends the job (no hang: ctest's timeout);
 #   * after every failure an old output file is untouched.
 # usage: test_mpi_tool.sh MPIEXEC NUMPROC_FLAG DEWALL_MPI DEWALL
 set -uo pipefail
@@ -67,6 +68,16 @@ expect_error 2 "dewall-mpi: missing.dwpt: cannot open file" "a missing file"
 
 run 3 triangulate u3.dwpt
 expect_error 2 "^usage: mpirun -n R dewall-mpi triangulate" "no output file"
+
+# A rank that exits early (the third process of the job is `false`: it ends
+# before MPI_Init): mpiexec ends the job, no rank hangs, old.txt survives.
+"$mpiexec" "$np" 2 "$tool" triangulate u3.dwpt -o old.txt : "$np" 1 false >run.log 2>&1
+status=$?
+[ "$status" -ne 0 ] || fail "a rank exiting early: exit 0"
+[ "$(cat old.txt)" = "old contents" ] || fail "a rank exiting early: the old output was replaced"
+[ -z "$(ls -A | grep -v -E '^(u3|b2|nan|cut)\.|^(old\.txt|run\.log|certify\.log)$')" ] ||
+  fail "a rank exiting early: files left behind: $(ls -A)"
+echo "a rank exiting early: exit $status, the old output untouched"
 
 [ "$failures" -eq 0 ] && echo "passed" || echo "$failures failure(s)"
 exit $((failures > 0))
