@@ -27,7 +27,11 @@
 //     ranks whose block may hold a point that decides it:
 //     a finite cell: the ranks whose block box may meet the closed ball
 //       (Simplex_sphere's box, proven to contain it; Ball_box::may_meet) —
-//       they answer with every point of theirs that may lie in the ball;
+//       they answer with the points of theirs that may lie in the ball not
+//       sent before, or, when there are more than a limit (8, doubling each
+//       round), with that many nearest the centre, the answer then marked
+//       incomplete; a cell is verified once every answer about it was
+//       complete (until then it is asked about again while it stands);
 //     an infinite cell (a hull facet f of S): the ranks whose block box has a
 //       corner strictly beyond f (exact orientation) — they answer with one
 //       point strictly beyond f (exact orientation), if they have one.
@@ -44,10 +48,12 @@
 // σ ∈ DT(S) and no point of P \ S in σ's closed ball ⇒ σ ∈ DT(P) (a point
 // outside the closed ball is outside the perturbed sphere: the perturbation
 // decides only ties). At the end, for each block point v:
-//  * every finite cell of DT(S) at v is verified: its closed ball holds no
-//    point of P \ S (a rank not asked has none in it — its box misses the
-//    ball; a rank asked sent all it has there, now in S; S only grows), so by
-//    (b) it is a cell of DT(P);
+//  * every finite cell of DT(S) at v is verified, or was never reached by
+//    the walk of verification_queries (then no point of P \ S is in conflict
+//    with it: see there): a verified cell's closed ball holds no point of
+//    P \ S (a rank not asked has none in it — its box misses the ball; each
+//    rank asked, in a complete answer, sent all it has there, now in S; S only
+//    grows), so by (b) it is a cell of DT(P);
 //  * every hull facet of S at v is verified: no point of P lies strictly
 //    beyond it (if one did, its rank would have answered with such a point,
 //    and a point of S is never strictly beyond a hull facet of S). So near v,
@@ -318,7 +324,8 @@ struct Query {
   enum Kind : std::int32_t { box = 0, ball = 1, facet = 2 };
   static constexpr int payload = std::max(4 * D + 1, (D + 1) * D);
   std::int32_t kind = box;
-  std::int32_t slot = 0;  // facet: the position of the infinite vertex
+  std::int32_t slot = 0;   // facet: the position of the infinite vertex
+  std::int32_t limit = 0;  // ball: answer with at most this many points (the nearest the centre)
   std::array<double, payload> d{};
 };
 
@@ -410,6 +417,7 @@ class Rank_triangulation {
     boxes_.resize(c.size);
     MPI_Allgather(&mine, sizeof(Box<D>), MPI_BYTE, boxes_.data(), sizeof(Box<D>), MPI_BYTE, c.comm);
     sent_.resize(c.size);
+    pending_.resize(c.size);
     all_blocks_ = detail::Box<D>{Box<D>::empty().lo, Box<D>::empty().hi};
     for (const Box<D>& b : boxes_)
       for (int j = 0; j < D && !b.is_empty(); ++j) {
@@ -536,6 +544,7 @@ class Rank_triangulation {
   /// points it tests the cells near the block's boundary only.
   void verification_queries(const detail::Incremental_delaunay<D>& dt, std::vector<std::vector<Query<D>>>& queries) {
     constexpr Index infinite = detail::Incremental_delaunay<D>::infinite;
+    for (auto& p : pending_) p.clear();
     enum : std::uint8_t { untested = 0, closed = 1, open = 2 };
     std::vector<std::uint8_t> state(dt.slots(), untested);
     std::vector<std::size_t> stack;
@@ -603,14 +612,26 @@ class Rank_triangulation {
       }
       if (!at_block) continue;
       std::sort(key.begin(), key.end());
-      if (!verified_.insert(key).second) continue;
-      for (const int r : ranks) queries[r].push_back(q);
+      if (verified_.count(key)) continue;
+      q.limit = answer_limit();
+      for (const int r : ranks) {
+        queries[r].push_back(q);
+        pending_[r].push_back(key);
+      }
       stats_.queries_sent += ranks.size();
     }
   }
 
-  /// One exchange of questions and answers; the points received join S.
-  /// Returns how many arrived here.
+  /// How many points a ball question asks for: 8 in the first verifying
+  /// round, doubling with each round (few rounds even where every ball holds
+  /// every point, as on a sphere).
+  std::int32_t answer_limit() const {
+    return std::int32_t{8} << std::min<std::size_t>(stats_.rounds, 26);
+  }
+
+  /// One exchange of questions and answers; the points received join S, and
+  /// the cells asked about whose every answer was complete are verified.
+  /// Returns how many points arrived here.
   std::uint64_t halo_round(const std::vector<std::vector<Query<D>>>& queries) {
     const std::vector<Query<D>> asked_flat = alltoall(c_, queries);
     // Who asked what: exchange keeps rank order; recover the sources from the counts.
@@ -618,12 +639,29 @@ class Rank_triangulation {
     for (int q = 0; q < c_.size; ++q) counts[q] = static_cast<int>(queries[q].size());
     MPI_Alltoall(counts.data(), 1, MPI_INT, per_source.data(), 1, MPI_INT, c_.comm);
     std::vector<std::vector<Record<D>>> answers(c_.size);
+    std::vector<std::vector<std::uint8_t>> complete(c_.size);
     run_collectively(c_.comm, [&] {
       std::size_t at = 0;
       for (int source = 0; source < c_.size; ++source)
-        for (int k = 0; k < per_source[source]; ++k) answer(source, asked_flat[at++], answers[source]);
+        for (int k = 0; k < per_source[source]; ++k)
+          complete[source].push_back(answer(source, asked_flat[at++], answers[source]) ? 1 : 0);
     });
     const std::vector<Record<D>> got = alltoall(c_, answers);
+    const std::vector<std::uint8_t> done = alltoall(c_, complete);
+    // A cell is verified when every rank asked about it sent all it may hold in its ball.
+    std::unordered_set<Global_simplex<D>, Key_hash<D>> incomplete;
+    std::size_t at = 0;
+    for (int r = 0; r < c_.size; ++r) {
+      const bool verifying = pending_[r].size() == queries[r].size();
+      for (std::size_t k = 0; k < queries[r].size(); ++k, ++at)
+        if (verifying && !done[at]) incomplete.insert(pending_[r][k]);
+    }
+    for (int r = 0; r < c_.size; ++r) {
+      if (pending_[r].size() != queries[r].size()) continue;
+      for (const Global_simplex<D>& key : pending_[r])
+        if (!incomplete.count(key)) verified_.insert(key);
+    }
+    for (auto& p : pending_) p.clear();
     for (const Record<D>& r : got) {
       points_.push_back(kernel::Point_d<D>{r.x});
       gid_.push_back(r.gid);
@@ -632,8 +670,10 @@ class Rank_triangulation {
     return got.size();
   }
 
-  /// Answers one question of rank `source` about this block.
-  void answer(int source, const Query<D>& q, std::vector<Record<D>>& out) {
+  /// Answers one question of rank `source` about this block; says whether
+  /// the answer is complete (every point the question may concern is sent
+  /// now or was before).
+  bool answer(int source, const Query<D>& q, std::vector<Record<D>>& out) {
     std::vector<char>& sent = sent_[source];
     if (sent.empty()) sent.assign(nb_, 0);
     auto send = [&](std::uint32_t i) {
@@ -650,6 +690,7 @@ class Rank_triangulation {
                       [&](std::uint32_t i) {
                         if (!sent[i] && b.holds(points_[i].x)) send(i);
                       });
+      return true;
     } else if (q.kind == Query<D>::ball) {
       detail::Ball_box<D> b;
       for (int j = 0; j < D; ++j) {
@@ -660,10 +701,27 @@ class Rank_triangulation {
       }
       b.radius2_limit = q.d[4 * D];
       b.bounded = b.radius2_limit >= 0;
+      std::vector<std::pair<double, std::uint32_t>> candidates;  // (squared distance to the centre, point)
+      Coords<D> centre;
+      for (int j = 0; j < D; ++j) centre[j] = 0.5 * b.centre_lo[j] + 0.5 * b.centre_hi[j];
       index_.for_each([&](const Box<D>& node) { return b.may_meet(node.lo, node.hi); },
                       [&](std::uint32_t i) {
-                        if (!sent[i] && b.may_meet(points_[i].x, points_[i].x)) send(i);
+                        if (sent[i] || !b.may_meet(points_[i].x, points_[i].x)) return;
+                        double d2 = 0;
+                        for (int j = 0; j < D; ++j) d2 += (points_[i][j] - centre[j]) * (points_[i][j] - centre[j]);
+                        candidates.push_back({d2, i});
                       });
+      // Too many: the nearest the centre only (a ranking; the asker asks again
+      // while the cell stands). Ties by point number: the same answer on every run.
+      const auto limit = static_cast<std::size_t>(std::max(q.limit, 1));
+      const bool all = !b.bounded || candidates.size() <= limit;
+      if (!all) {
+        std::nth_element(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(limit), candidates.end());
+        candidates.resize(limit);
+      }
+      std::sort(candidates.begin(), candidates.end());
+      for (const auto& [d2, i] : candidates) send(i);
+      return all;
     } else {
       std::array<kernel::Point_d<D>, D + 1> f{};
       Coords<D> centroid{};
@@ -692,7 +750,9 @@ class Rank_triangulation {
                           best_d2 = d2;
                         }
                       });
-      if (best != std::numeric_limits<std::uint32_t>::max()) send(best);
+      if (best == std::numeric_limits<std::uint32_t>::max()) return true;
+      send(best);
+      return false;
     }
   }
 
@@ -706,6 +766,7 @@ class Rank_triangulation {
   std::vector<std::vector<char>> sent_;       // by asking rank: the block points sent there
   Block_index<D> index_;
   std::unordered_set<Global_simplex<D>, Key_hash<D>> verified_;
+  std::vector<std::vector<Global_simplex<D>>> pending_;  // by rank: the cells asked about this round
   bool spanning_ = false;                     // dt holds DT(points_[0, in_dt_))
   std::size_t in_dt_ = 0;
   detail::Box<D> all_blocks_;                 // the box of every block

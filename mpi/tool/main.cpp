@@ -58,7 +58,7 @@ const char* const usage_text =
     "list (one simplex per line, 0-based point indices); rank 0 writes it, sorted.\n"
     "  --stats   per-rank figures on standard error (points, halo, rounds, seconds)\n"
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
-    "            rank's block (default 2; 0: none); only the time changes\n";
+    "            rank's block (default 1; 0: none); only the time changes\n";
 
 struct Arguments {
   std::string input, output;

@@ -37,7 +37,7 @@ struct Options {
   /// Before the first round each rank fetches the points within this many
   /// mean point spacings of its block's box (its first halo guess; the rounds
   /// fetch whatever else is needed). 0: none.
-  double seed_spacings = 2.0;
+  double seed_spacings = 1.0;
 };
 
 /// What one rank did (its own numbers; nothing is summed over ranks).
