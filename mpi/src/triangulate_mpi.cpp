@@ -54,9 +54,11 @@
 //    P \ S (a rank not asked has none in it — its box misses the ball; each
 //    rank asked, in a complete answer, sent all it has there, now in S; S only
 //    grows), so by (b) it is a cell of DT(P);
-//  * every hull facet of S at v is verified: no point of P lies strictly
-//    beyond it (if one did, its rank would have answered with such a point,
-//    and a point of S is never strictly beyond a hull facet of S). So near v,
+//  * no point of P lies strictly beyond a hull facet of S at v: the walk
+//    tests every infinite cell; a rank whose box lies on the closed inner
+//    side (exact, at its corners) has none beyond, and a rank asked answers
+//    with a point beyond when it has one, which then joins S — and a point
+//    of S is never strictly beyond a hull facet of S. So near v,
 //    conv(P) lies on the inner side of each hull facet of S at v, and equals
 //    conv(S) near v.
 // The cells of DT(S) at v cover a neighbourhood of v in conv(S) = conv(P)
