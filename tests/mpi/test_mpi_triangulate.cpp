@@ -161,6 +161,27 @@ std::vector<kernel::Point_d<D>> with_duplicates(std::size_t n, std::uint64_t see
   return v;
 }
 
+/// A lattice through the origin and copies of its points with every zero
+/// coordinate written −0, shuffled: −0 and +0 are one point (the
+/// single-machine rule), wherever the copies land and whichever is first.
+template <int D>
+std::vector<kernel::Point_d<D>> signed_zeros(std::size_t n, std::uint64_t seed) {
+  std::vector<kernel::Point_d<D>> v = generated<D>(io::Point_kind::grid, n, 0);
+  for (auto& p : v)
+    for (int j = 0; j < D; ++j) p[j] -= 3;  // the lattice straddles every axis
+  const std::size_t m = v.size();
+  for (std::size_t i = 0; i < m; ++i) {
+    kernel::Point_d<D> q = v[i];
+    bool zero = false;
+    for (int j = 0; j < D; ++j)
+      if (q[j] == 0) q[j] = -0.0, zero = true;
+    if (zero) v.push_back(q);
+  }
+  test::Rng rng(seed);
+  std::shuffle(v.begin(), v.end(), rng);
+  return v;
+}
+
 template <int D>
 void cases(std::size_t n) {
   using io::Point_kind;
@@ -173,6 +194,7 @@ void cases(std::size_t n) {
   check_case<D>("duplicates across ranks", with_duplicates<D>(n, 6), Shares::even);
   test::Rng rng(7);
   check_case<D>("random lattice, many duplicates", test::lattice_points<D>(rng, n / 2, -6, 6), Shares::gaps);
+  check_case<D>("-0 and +0 copies across ranks", signed_zeros<D>(n / 2, 8), Shares::even);
 }
 
 template <int D>
