@@ -221,6 +221,56 @@ TEST_CASE("incremental: CGAL's cells in 4D, 5D and 6D", "[incremental]") {
   check_families<6>(30, rng);
 }
 
+namespace {
+
+/// Builds from the distinct points' first 60% after sorting them by x (the
+/// later points lie outside the first ones' box, as dewall::mpi's halo
+/// does), the static filter made for the box of all, then insert_more the
+/// rest in two batches; the cells must be CGAL's of all points.
+template <int D>
+void check_insert_more(const std::vector<dewall::kernel::Point_d<D>>& points) {
+  std::set<std::array<double, D>> seen;
+  std::vector<std::size_t> distinct;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (seen.insert(points[i].x).second) distinct.push_back(i);
+  std::stable_sort(distinct.begin(), distinct.end(),
+                   [&](std::size_t a, std::size_t b) { return points[a][0] < points[b][0]; });
+  const auto coords = [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; };
+  const auto all_box = dewall::detail::bounding_box<D>(distinct.size(), coords);
+  const std::size_t first = distinct.size() * 3 / 5, second = distinct.size() * 4 / 5;
+  Incremental_delaunay<D> dt;
+  dt.check_each_insertion = distinct.size() <= 400;
+  REQUIRE(dt.build(first, coords, [&](std::size_t k) { return distinct[k]; }, &all_box));
+  dt.insert_more(second - first, [&](std::size_t k) -> const auto& { return coords(first + k); },
+                 [&](std::size_t k) { return distinct[first + k]; });
+  dt.insert_more(distinct.size() - second, [&](std::size_t k) -> const auto& { return coords(second + k); },
+                 [&](std::size_t k) { return distinct[second + k]; });
+  CHECK(dt.is_valid());
+  dewall::test::Simplex_set<D> ours;
+  for (std::size_t c = 0; c < dt.slots(); ++c) {
+    if (dt.is_free(c) || dt.is_infinite(c)) continue;
+    std::array<std::uint32_t, D + 1> t;
+    for (int i = 0; i <= D; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+    std::sort(t.begin(), t.end());
+    ours.insert(t);
+  }
+  CHECK(ours.size() == dt.finite_cells());
+  CHECK(ours == dewall::test::cgal_delaunay<D>(points));
+}
+
+}  // namespace
+
+TEST_CASE("incremental: insert_more after build gives the triangulation of all the points", "[incremental]") {
+  std::mt19937_64 rng(36);
+  check_insert_more<2>(dewall::test::uniform<2>(1000, rng));
+  check_insert_more<2>(dewall::test::lattice<2>(400));  // every point ties
+  check_insert_more<2>(dewall::test::lattice_samples<2>(600, 4, rng));
+  check_insert_more<3>(dewall::test::uniform<3>(600, rng));
+  check_insert_more<3>(dewall::test::lattice<3>(300));
+  check_insert_more<3>(dewall::test::cospherical<3>(true));
+  check_insert_more<4>(dewall::test::uniform<4>(150, rng));
+}
+
 TEST_CASE("incremental: too few points or a flat set build nothing", "[incremental]") {
   Incremental_delaunay<3> dt;
   const std::vector<Point3> three{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}};

@@ -102,10 +102,18 @@ class Incremental_delaunay {
   /// object is unusable.
   template <class Coordinates, class Id>
   bool build(std::size_t count, Coordinates&& coordinates, Id&& id) {
+    return build(count, coordinates, id, nullptr);
+  }
+  /// As build(count, coordinates, id), the static filter made for the points
+  /// inside `filter_box` (which must hold these points and every point
+  /// insert_more will insert; null: the points' bounding box).
+  template <class Coordinates, class Id>
+  bool build(std::size_t count, Coordinates&& coordinates, Id&& id, const Box<D>* filter_box) {
     if (count < static_cast<std::size_t>(D + 1)) return false;
     const Box<D> box = bounding_box<D>(count, coordinates);
     std::vector<std::uint32_t> order = brio_order<D>(count, coordinates, box);
-    static_filter_ = kernel::Static_filter_d<D>(box.lo, box.hi);
+    static_filter_ = filter_box ? kernel::Static_filter_d<D>(filter_box->lo, filter_box->hi)
+                                : kernel::Static_filter_d<D>(box.lo, box.hi);
     if (!start(coordinates, order)) return false;
     points_.resize(count);
     input_.resize(count);
@@ -120,6 +128,29 @@ class Incremental_delaunay {
         throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
     }
     return true;
+  }
+
+  /// Inserts `count` more points after a successful build (each distinct from
+  /// every vertex, and inside the box the static filter was made for: the
+  /// `filter_box` given to build, else build's points' box), in BRIO order;
+  /// ids as in build. The triangulation is then that of all points inserted.
+  /// (dewall::mpi adds the halo points of each round this way.)
+  template <class Coordinates, class Id>
+  void insert_more(std::size_t count, Coordinates&& coordinates, Id&& id) {
+    if (count == 0) return;
+    const std::vector<std::uint32_t> order = brio_order<D>(count, coordinates);
+    const std::size_t first = points_.size();
+    points_.resize(first + count);
+    input_.resize(first + count);
+    for (std::size_t k = 0; k < count; ++k) {
+      points_[first + k].x = coordinates(order[k]);
+      input_[first + k] = static_cast<Index>(id(order[k]));
+    }
+    for (std::size_t k = first; k < first + count; ++k) {
+      insert(static_cast<Index>(k));
+      if (check_each_insertion && !is_valid())
+        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
+    }
   }
 
   /// Tests: run is_valid() after every insertion (O(n) each), throwing
