@@ -34,7 +34,7 @@ Rank_error error_of(std::exception_ptr e) {
     std::rethrow_exception(e);
   } catch (const Invalid_input& x) {
     r.kind = Error_kind::invalid_input;
-    r.message = x.what();
+    r.message = x.reason();  // what() is "point N " + reason() when a point is named
     r.point_index = x.point_index();
   } catch (const std::exception& x) {
     r.kind = Error_kind::other;
@@ -47,7 +47,10 @@ Rank_error error_of(std::exception_ptr e) {
 }
 
 void throw_error(const Rank_error& e) {
-  if (e.kind == Error_kind::invalid_input) throw Invalid_input(e.message, e.point_index);
+  if (e.kind == Error_kind::invalid_input) {
+    if (e.point_index == Invalid_input::npos) throw Invalid_input(e.message);
+    throw Invalid_input(static_cast<std::size_t>(e.point_index), e.message);
+  }
   throw std::runtime_error(e.message);
 }
 

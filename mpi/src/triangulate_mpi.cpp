@@ -852,8 +852,7 @@ Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, 
       if (!kernel::is_finite(local[i][j])) bad = global_offset + i;
   MPI_Allreduce(&bad, &first_bad, 1, MPI_UINT64_T, MPI_MIN, comm);
   if (first_bad != std::numeric_limits<std::uint64_t>::max())
-    throw Invalid_input("point " + std::to_string(first_bad) + " has a non-finite coordinate (NaN or infinity)",
-                        first_bad);
+    throw Invalid_input(first_bad, "has a non-finite coordinate (NaN or infinity)");
 
   // 2. The blocks.
   const double t0 = MPI_Wtime();

@@ -46,9 +46,8 @@ enum class Engine {
 /// region's size, a spent search budget, 4D and up) in dimension D: the
 /// project's own where it is faster than CGAL's on one thread (4D and up:
 /// half CGAL dD's time on uniform points), CGAL's in 2D and 3D, where what is
-/// left to it is mostly near-cospherical (spheres, shells, lattices), where
-/// nearly every sphere test needs the exact stage and ours (GMP) is slower
-/// than CGAL's (points on a sphere, 10^5, one thread: 1.6× CGAL's time).
+/// left to it is mostly near-cospherical or a surface (spheres, shells,
+/// lattices, tori), on which ours is still slower than CGAL's.
 /// docs/engines.md has the measurements.
 constexpr Engine default_incremental_engine(int dimension) {
   return dimension >= 4 ? Engine::incremental : Engine::cgal;

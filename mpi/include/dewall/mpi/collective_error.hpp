@@ -26,7 +26,7 @@ enum class Error_kind : int {
 /// One rank's error.
 struct Rank_error {
   Error_kind kind = Error_kind::none;
-  std::string message;
+  std::string message;  ///< what(); for invalid_input the reason (Invalid_input::reason())
   std::uint64_t point_index = Invalid_input::npos;  ///< for invalid_input
   int rank = -1;                                    ///< the rank that met it
 };
