@@ -558,7 +558,11 @@ def _inverse_and_determinant(e):
 
 
 def barycentric_transforms(points, simplices):
-    """scipy's transform array for `simplices` of `points` (see Delaunay.transform)."""
+    """scipy's transform array for `simplices` of `points` (see Delaunay.transform). In 2-D and
+    3-D the same formulas run in the compiled module (one pass, no temporaries)."""
+    if points.shape[1] in (2, 3):
+        return _dewall.barycentric_transforms(np.ascontiguousarray(points, dtype=np.float64),
+                                              np.ascontiguousarray(simplices, dtype=np.uint32), _RCOND_LIMIT)
     vertices = points[simplices]  # (m, d + 1, d)
     r = vertices[:, -1, :]
     columns = vertices[:, :-1, :] - r[:, None, :]  # columns[:, j]: vertex j - r, column j of T
