@@ -122,11 +122,7 @@ class Incremental_delaunay {
       input_[k] = static_cast<Index>(id(order[k]));
     }
     std::vector<std::uint32_t>().swap(order);
-    for (std::size_t k = D + 1; k < count; ++k) {
-      insert(static_cast<Index>(k));
-      if (check_each_insertion && !is_valid())
-        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
-    }
+    insert_vertices(D + 1, count);
     return true;
   }
 
@@ -146,11 +142,7 @@ class Incremental_delaunay {
       points_[first + k].x = coordinates(order[k]);
       input_[first + k] = static_cast<Index>(id(order[k]));
     }
-    for (std::size_t k = first; k < first + count; ++k) {
-      insert(static_cast<Index>(k));
-      if (check_each_insertion && !is_valid())
-        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
-    }
+    insert_vertices(first, first + count);
   }
 
   /// Tests: run is_valid() after every insertion (O(n) each), throwing
@@ -167,6 +159,7 @@ class Incremental_delaunay {
   std::vector<std::size_t> cavity(const Point& q) {
     const auto filter = std::exchange(static_filter_, kernel::Static_filter_d<D>());
     find_cavity(q, infinite);
+    clear_marks();
     static_filter_ = filter;
     std::vector<std::size_t> cells = cavity_;
     std::sort(cells.begin(), cells.end());
@@ -356,13 +349,8 @@ class Incremental_delaunay {
     const std::size_t start_cell = locate(q);
     DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
 
-    // 3b. The cavity, breadth-first; mark_: epoch = in conflict, epoch + 1 = not.
-    epoch_ += 2;
-    if (epoch_ < 2) {  // wrapped around: forget every old mark
-      std::fill(mark_.begin(), mark_.end(), 0);
-      epoch_ = 2;
-    }
-    const std::uint32_t in = epoch_, out = epoch_ + 1;
+    // 3b. The cavity, breadth-first; mark_: in conflict or not (clear_marks resets both).
+    constexpr std::uint8_t in = 1, out = 2;
     cavity_.clear();
     boundary_.clear();
     cavity_.push_back(start_cell);
@@ -396,6 +384,24 @@ class Incremental_delaunay {
     }
   }
 
+  /// Step 3 for vertices first … last − 1 (points_ holds them).
+  void insert_vertices(std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
+      insert(static_cast<Index>(k));
+      if (check_each_insertion && !is_valid())
+        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
+    }
+  }
+
+  /// Resets the marks find_cavity set: on the cavity's cells and on the cells
+  /// outside its boundary, the only ones it marks (explicit clearing keeps the
+  /// marks one byte per slot, a quarter of the epoch counters it replaces: the
+  /// marks are one of the search's cache misses).
+  void clear_marks() {
+    for (const std::size_t c : cavity_) mark_[c] = 0;
+    for (const Boundary_facet& f : boundary_) mark_[f.outside >> facet_bits] = 0;
+  }
+
   /// Step 3: inserts vertex v (points_[v]).
   void insert(Index v) {
     find_cavity(points_[v], v);
@@ -420,8 +426,7 @@ class Incremental_delaunay {
         mark_.push_back(0);
       }
       new_cells_.push_back(static_cast<Index>(s));
-      cells_[s].v = f.vertices;
-      mark_[s] = 0;
+      cells_[s].v = f.vertices;  // its mark is 0: clear_marks reset the slot when it left a cavity
       cells_[s].n[f.facet] = f.outside;
       cells_[f.outside >> facet_bits].n[f.outside & facet_mask] = reference(s, f.facet);
       bool finite = true;
@@ -436,6 +441,7 @@ class Incremental_delaunay {
       glue_star_by_ridges();
       ++stats_.ridge_table_stars;
     }
+    clear_marks();
     for (; reused < cavity_.size(); ++reused) {
       cells_[cavity_[reused]].v[0] = free_slot;
       free_.push_back(static_cast<Index>(cavity_[reused]));
@@ -620,11 +626,10 @@ class Incremental_delaunay {
     std::array<std::uint32_t, D + 1> n;
   };
   std::vector<Record> cells_;    // by slot
-  std::vector<std::uint32_t> mark_;  // cavity epochs, by slot
+  std::vector<std::uint8_t> mark_;  // 0, or find_cavity's in / out, by slot
   std::vector<Index> free_;      // free slots
   std::size_t finite_cells_ = 0;
   std::size_t last_ = 0;         // a finite cell made last: the next walk starts there
-  std::uint32_t epoch_ = 0;
   std::vector<std::size_t> cavity_;
   std::vector<Boundary_facet> boundary_;
   Ridge_table ridges_;
