@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 #include <vector>
 
+#include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/kd_tree.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
@@ -282,4 +284,45 @@ TEMPLATE_TEST_CASE_SIG("clipping to the outer side keeps every outer point, and 
     Coords<D> clo = lo, chi = hi;
     CHECK(filter.clip_to_outer_side(clo, chi) == inside_is_outer);
   }
+}
+
+TEMPLATE_TEST_CASE_SIG("Active_face_list: the paper's Update and pop against a map", "[afl]", ((int D), D), 2, 3, 6) {
+  // Faces over a small vertex pool, so that faces recur (in any vertex order,
+  // as the two simplices on a face give it), through several rehashes.
+  std::mt19937_64 rng(20261125 + D);
+  std::uniform_int_distribution<detail::Index> vertex(0, 3 * D + 2);
+  std::uniform_int_distribution<int> action(0, 3);
+  detail::Active_face_list<D> afl;
+  std::map<detail::Face<D>, detail::Face<D>> model;  // key (sorted) -> the face as first inserted
+  const auto random_face = [&] {
+    detail::Face<D> f;
+    for (int i = 0; i < D; ++i) {
+      do f[i] = vertex(rng);
+      while (std::find(f.begin(), f.begin() + i, f[i]) != f.begin() + i);
+    }
+    return f;
+  };
+  for (int step = 0; step < 20000; ++step) {
+    if (action(rng) == 0 && !model.empty()) {
+      REQUIRE(!afl.empty());
+      const detail::Face<D> f = afl.pop();
+      const auto it = model.find(detail::face_key<D>(f));
+      REQUIRE(it != model.end());
+      CHECK(it->second == f);  // the orientation it was inserted with
+      model.erase(it);
+    } else {
+      const detail::Face<D> f = random_face();
+      const bool inserted = model.find(detail::face_key<D>(f)) == model.end();
+      CHECK(afl.update(f) == inserted);
+      if (inserted) model.emplace(detail::face_key<D>(f), f);
+      else model.erase(detail::face_key<D>(f));
+    }
+    REQUIRE(afl.size() == model.size());
+    REQUIRE(afl.empty() == model.empty());
+  }
+  while (!model.empty()) {  // every face left comes out once
+    const detail::Face<D> f = afl.pop();
+    REQUIRE(model.erase(detail::face_key<D>(f)) == 1);
+  }
+  CHECK(afl.empty());
 }

@@ -66,11 +66,9 @@ class Kd_tree {
   }
 
   const std::vector<Index>& order() const { return order_; }
-  const Node& root() const { return nodes_[0]; }
   const Node& node(Index i) const { return nodes_[i]; }
   std::size_t node_count() const { return nodes_.size(); }
   std::size_t leaf_count() const { return (nodes_.size() + 1) / 2; }
-  std::size_t leaf_size() const { return leaf_size_; }
   /// The leaf holding the point at position p.
   Index leaf_of(Index p) const { return leaf_of_[p]; }
   /// The bounding box of all points.

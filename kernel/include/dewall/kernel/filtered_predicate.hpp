@@ -200,7 +200,7 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
     }
     if (bits <= 125) {
       const Int128 det = determinant<Int128, K>(m);
-      return Recipe::sign_adjust * (det > 0 ? POSITIVE : det < 0 ? NEGATIVE : ZERO);
+      return Recipe::sign_adjust * sign_of(det);
     }
   }
   if (const auto s = exact_small_entries<Recipe, D>(scale, coordinate_bits)) return *s;
@@ -246,7 +246,7 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   }
   if (!(bound < 0x1p52)) return std::nullopt;
   const double det = determinant<double, K>(m);
-  return Recipe::sign_adjust * (det > 0 ? POSITIVE : det < 0 ? NEGATIVE : ZERO);
+  return Recipe::sign_adjust * sign_of(det);
 }
 
 /// The stages after an undecided filter, under a guard of the floating-point
