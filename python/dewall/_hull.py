@@ -203,26 +203,11 @@ class Voronoi(_FromDelaunay):
         after = tri.neighbors[owner, leave].astype(np.int64)
         valid = after >= 0
         # the same edge's incidence in the next tetrahedron: its slot there
-        incidence = np.arange(6 * m)
         order = np.lexsort((owner, edge))  # incidences sorted by (edge, owner): find (edge, after) by search
         sorted_key = edge[order] * m + owner[order]
         target = np.searchsorted(sorted_key, edge * m + np.maximum(after, 0))
         successor = np.where(valid, order[np.minimum(target, order.size - 1)], -1)
-        has_predecessor = np.zeros(6 * m, dtype=bool)
-        has_predecessor[successor[valid]] = True
-        chain = np.zeros(keys.size, dtype=bool)
-        chain[edge[~has_predecessor]] = True
-        cycle = ~chain[edge]
-        start = np.full(keys.size, 6 * m)
-        np.minimum.at(start, edge[cycle], incidence[cycle])
-        successor[cycle & (successor == start[edge])] = -1
-        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
-        while (pointer >= 0).any():
-            live = np.nonzero(pointer >= 0)[0]
-            target = pointer[live]
-            rank[live] += rank[target]
-            pointer[live] = pointer[target]
-        order = np.lexsort((-rank, edge))
+        order, chain = _walk_order(successor, edge, keys.size)
         edges, groups = edge[order], group[owner[order]]
         new = np.r_[True, (edges[1:] != edges[:-1]) | (groups[1:] != groups[:-1])]
         edges, groups = edges[new], groups[new]
@@ -286,22 +271,7 @@ class Voronoi(_FromDelaunay):
         valid = after >= 0
         where = np.argmax(simplices[np.maximum(after, 0)] == vertex[:, None], axis=1)
         successor = np.where(valid, 3 * after + where, -1)
-        has_predecessor = np.zeros(3 * m, dtype=bool)
-        has_predecessor[successor[valid]] = True
-        chain = np.zeros(self.npoints, dtype=bool)  # a point on the hull: its triangles form a chain
-        chain[vertex[~has_predecessor]] = True
-        cycle = ~chain[vertex]
-        start = np.full(self.npoints, 3 * m)
-        np.minimum.at(start, vertex[cycle], incidence[cycle])
-        successor[cycle & (successor == start[vertex])] = -1  # open each cycle before its first triangle
-        # list ranking by pointer jumping: rank = steps to the end of the chain
-        rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
-        while (pointer >= 0).any():
-            live = np.nonzero(pointer >= 0)[0]
-            target = pointer[live]
-            rank[live] += rank[target]
-            pointer[live] = pointer[target]
-        order = np.lexsort((-rank, vertex))
+        order, chain = _walk_order(successor, vertex, self.npoints)  # chain: a point on the hull
         sites, groups = vertex[order], group[owner[order]]
         new = np.r_[True, (sites[1:] != sites[:-1]) | (groups[1:] != groups[:-1])]  # merged cells: one vertex
         sites, groups = sites[new], groups[new]
@@ -320,6 +290,35 @@ class Voronoi(_FromDelaunay):
     def ridge_dict(self):
         """{(p, q): ridge vertices} for each ridge, as scipy's."""
         return {tuple(map(int, pq)): v for pq, v in zip(self.ridge_points, self.ridge_vertices)}
+
+
+def _walk_order(successor, key, key_count):
+    """The incidences (0 … len(successor) − 1) grouped by `key`, each group in walk order, and
+    per key whether its incidences form a chain (an open walk: a hull point, a hull edge).
+
+    successor[i]: the next incidence of the same key (−1: none). A key's incidences form one
+    chain (a hull point's triangles, a hull edge's tetrahedra) or one cycle; a cycle is opened
+    before its smallest incidence. List ranking by pointer jumping gives each incidence its
+    steps to the end of its chain; sorting by (key, −steps) is then the walk."""
+    successor = successor.copy()
+    count = successor.size
+    incidence = np.arange(count)
+    valid = successor >= 0
+    has_predecessor = np.zeros(count, dtype=bool)
+    has_predecessor[successor[valid]] = True
+    chain = np.zeros(key_count, dtype=bool)  # a key with a first incidence: a chain
+    chain[key[~has_predecessor]] = True
+    cycle = ~chain[key]
+    start = np.full(key_count, count)
+    np.minimum.at(start, key[cycle], incidence[cycle])
+    successor[cycle & (successor == start[key])] = -1  # open each cycle before its first incidence
+    rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
+    while (pointer >= 0).any():
+        live = np.nonzero(pointer >= 0)[0]
+        target = pointer[live]
+        rank[live] += rank[target]
+        pointer[live] = pointer[target]
+    return np.lexsort((-rank, key)), chain
 
 
 def _merge(count, pairs):
