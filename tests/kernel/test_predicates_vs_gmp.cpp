@@ -279,14 +279,13 @@ TEST_CASE("Wide_integer: its operations agree with GMP modulo 2^(64 L)", "[predi
       CHECK(same(a + b, x + y));
       CHECK(same(a - b, x - y));
       CHECK(same(-a, -x));
-      CHECK(same(a * b, x * y));  // wraps for L = 2
-      CHECK(same(a * b * c - c, x * y * z - z));
+      CHECK(same(a.times(7).times(~std::uint64_t{0}) - c, x * 7 * mpz_class(~0ul) - z));  // wraps for L = 2
       const auto m = static_cast<std::uint64_t>(limb(rng));
       CHECK(same(a.times(m), x * mpz_class(static_cast<unsigned long>(m))));
       CHECK(same(a.shifted_limb(), x << 64));
-      const auto wider = dewall::kernel::Wide_integer<L + 2>::extended(a * b);
-      CHECK(wider.sign() == sgn(reduce(x * y)));
-      CHECK(wider.magnitude_bits() == (a * b).magnitude_bits());
+      const auto wider = dewall::kernel::Wide_integer<L + 2>::extended(a - b);
+      CHECK(wider.sign() == sgn(reduce(x - y)));
+      CHECK(wider.magnitude_bits() == (a - b).magnitude_bits());
     }
   };
   check_width(std::integral_constant<int, 2>{});

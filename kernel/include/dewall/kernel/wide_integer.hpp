@@ -88,21 +88,6 @@ class Wide_integer {
     return r;
   }
   Wide_integer operator-() const { return Wide_integer{} - *this; }
-  /// The low `bits` bits of the product (schoolbook, the high half never formed).
-  friend Wide_integer operator*(const Wide_integer& a, const Wide_integer& b) {
-    Wide_integer r;
-    for (int i = 0; i < L; ++i) {
-      std::uint64_t carry = 0;
-      const auto ai = static_cast<Uint128>(a.limb_[static_cast<std::size_t>(i)]);
-      for (int j = 0; i + j < L; ++j) {
-        const auto k = static_cast<std::size_t>(i + j);
-        const Uint128 t = ai * b.limb_[static_cast<std::size_t>(j)] + r.limb_[k] + carry;
-        r.limb_[k] = static_cast<std::uint64_t>(t);
-        carry = static_cast<std::uint64_t>(t >> 64);
-      }
-    }
-    return r;
-  }
   /// this · m (m read as unsigned), modulo 2^bits: L products.
   Wide_integer times(std::uint64_t m) const {
     Wide_integer r;
