@@ -115,6 +115,7 @@ class Incremental_delaunay {
     static_filter_ = filter_box ? kernel::Static_filter_d<D>(filter_box->lo, filter_box->hi)
                                 : kernel::Static_filter_d<D>(box.lo, box.hi);
     if (!start(coordinates, order)) return false;
+    reserve_cells(count);
     points_.resize(count);
     input_.resize(count);
     for (std::size_t k = 0; k < count; ++k) {
@@ -300,6 +301,18 @@ class Incremental_delaunay {
     return true;
   }
 
+  /// Room for the cells of `count` points' triangulation, so that the arrays
+  /// do not grow by copying (each copy writes fresh pages the kernel must
+  /// clear first). What is reserved and never used stays unbacked address space.
+  void reserve_cells(std::size_t count) {
+    // Cells per point: 2 in the plane, about 6.7 for uniform points in space
+    // (up to 16 on sampled surfaces: they grow once or twice), more above.
+    constexpr std::size_t per_point = D == 2 ? 3 : D == 3 ? 8 : 0;
+    const std::size_t expected = std::min<std::size_t>(per_point * count, max_slots);
+    cells_.reserve(expected);
+    mark_.reserve(expected);
+  }
+
   int position(std::size_t c, Index v) const {
     for (int i = 0; i <= D; ++i)
       if (cells_[c].v[i] == v) return i;
@@ -482,10 +495,6 @@ class Incremental_delaunay {
     if constexpr (D > 3) {
       return false;
     } else {
-      // Facet k as the cell induces it: positions T[k], each (k, T[k]) an even
-      // permutation of (0 … D) (in 2D the counterclockwise edges).
-      static constexpr int T3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-      static constexpr int T2[3][2] = {{1, 2}, {2, 0}, {0, 1}};
       // The boundary's vertices numbered through a small open-addressing
       // table (in cache, unlike an array over all vertices), stamped per insertion.
       const std::uint32_t stamp = ++local_stamp_;
@@ -506,42 +515,68 @@ class Incremental_delaunay {
           if (l.vertex == w) return l.number;
         }
       };
-      // keys_[b·D + e]: the directed key of new cell b's e-th facet through p, and of its reverse.
+      // keys_[b·D + e]: the directed key of new cell b's e-th facet through p
+      // (star_facets[facet][e]), and of its reverse.
       keys_.resize(boundary_.size() * D);
       for (std::size_t b = 0; b < boundary_.size(); ++b) {
         const Boundary_facet& f = boundary_[b];
-        for (int k = 0, e = 0; k <= D; ++k) {
-          if (k == f.facet) continue;
-          std::uint32_t key, reverse;
+        const auto& facets = star_facets[f.facet];
+        // Each boundary vertex's number once per facet (each is in D − 1 of its keys).
+        std::array<std::uint32_t, D + 1> number;
+        for (int e = 0; e < D; ++e) number[facets[e].k] = local(f.vertices[facets[e].k]);
+        if (m >= star_table_side) return false;
+        for (int e = 0; e < D; ++e) {
+          const Star_facet& t = facets[e];
           if constexpr (D == 3) {
-            const int* t = T3[k];
-            const int r = t[0] == f.facet ? 0 : t[1] == f.facet ? 1 : 2;  // rotated to (p, a, b)
-            const std::uint32_t x = local(f.vertices[t[(r + 1) % 3]]), y = local(f.vertices[t[(r + 2) % 3]]);
-            key = x * star_table_side + y;
-            reverse = y * star_table_side + x;
+            const std::uint32_t x = number[t.a], y = number[t.b];
+            keys_[b * D + e] = {x * star_table_side + y, y * star_table_side + x};
           } else {
-            const bool p_first = T2[k][0] == f.facet;
-            const std::uint32_t x = local(f.vertices[T2[k][p_first ? 1 : 0]]);
-            key = 2 * x + (p_first ? 0 : 1);
-            reverse = 2 * x + (p_first ? 1 : 0);
+            const std::uint32_t x = number[t.a];
+            keys_[b * D + e] = {2 * x + t.b, 2 * x + (1 - t.b)};
           }
-          if (m >= star_table_side) return false;
-          keys_[b * D + e++] = {key, reverse};
         }
       }
-      for (std::size_t b = 0; b < boundary_.size(); ++b)
-        for (int k = 0, e = 0; k <= D; ++k) {
-          if (k == boundary_[b].facet) continue;
-          star_table_[keys_[b * D + e++][0]] = reference(new_cells_[b], k);
-        }
-      for (std::size_t b = 0; b < boundary_.size(); ++b)
-        for (int k = 0, e = 0; k <= D; ++k) {
-          if (k == boundary_[b].facet) continue;
-          cells_[new_cells_[b]].n[k] = star_table_[keys_[b * D + e++][1]];
-        }
+      for (std::size_t b = 0; b < boundary_.size(); ++b) {
+        const auto& facets = star_facets[boundary_[b].facet];
+        for (int e = 0; e < D; ++e) star_table_[keys_[b * D + e][0]] = reference(new_cells_[b], facets[e].k);
+      }
+      for (std::size_t b = 0; b < boundary_.size(); ++b) {
+        const auto& facets = star_facets[boundary_[b].facet];
+        for (int e = 0; e < D; ++e) cells_[new_cells_[b]].n[facets[e].k] = star_table_[keys_[b * D + e][1]];
+      }
       return true;
     }
   }
+
+  /// glue_star_directed's facets of a new cell through the new point p, which
+  /// sits at position `facet`: for each other position k (ascending), the
+  /// facet opposite k as the cell induces it, read from p on. In 3D it is
+  /// (p, a, b), a and b positions; in 2D (p, a) (b = 0) or (a, p) (b = 1).
+  /// Computed once from each facet's induced order: positions T[k], with
+  /// (k, T[k]) an even permutation of (0 … D) (in 2D the counterclockwise edges).
+  struct Star_facet {
+    int k, a, b;
+  };
+  static constexpr auto star_facets = [] {
+    constexpr int T3[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    constexpr int T2[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    std::array<std::array<Star_facet, D>, D + 1> table{};
+    if constexpr (D <= 3) {
+      for (int p = 0; p <= D; ++p)
+        for (int k = 0, e = 0; k <= D; ++k) {
+          if (k == p) continue;
+          if constexpr (D == 3) {
+            const int* t = T3[k];
+            const int r = t[0] == p ? 0 : t[1] == p ? 1 : 2;  // rotated to (p, a, b)
+            table[p][e++] = {k, t[(r + 1) % 3], t[(r + 2) % 3]};
+          } else {
+            const bool p_first = T2[k][0] == p;
+            table[p][e++] = {k, T2[k][p_first ? 1 : 0], p_first ? 0 : 1};
+          }
+        }
+    }
+    return table;
+  }();
 
   /// The D − 1 vertices of a facet through the new point other than it: in 2D
   /// and 3D packed in one integer (smaller first), above sorted in an array.
@@ -636,7 +671,7 @@ class Incremental_delaunay {
   std::vector<Index> new_cells_;  // the slot of each boundary facet's new cell
   // glue_star_directed: the boundary vertices' numbers, the facets' directed
   // keys (and their reverses), the table by directed key.
-  static constexpr std::uint32_t star_table_side = 128;  // < local_table_size / 2: the table never fills
+  static constexpr std::uint32_t star_table_side = 128;  // + D < local_table_size: the table never fills
   static constexpr int local_bits = 8;
   static constexpr std::uint32_t local_table_size = 1u << local_bits;
   struct Local {
