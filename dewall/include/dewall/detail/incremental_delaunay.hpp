@@ -294,6 +294,7 @@ class Incremental_delaunay {
         cells_[cb].n[ib] = reference(ca, ia);
       }
     free_.clear();
+    new_cells_.clear();  // start_of_cavity's candidates: none yet
     stats_ = {};
     finite_cells_ = 1;
     last_ = 0;
@@ -347,6 +348,36 @@ class Incremental_delaunay {
     }
   }
 
+  /// A cell in conflict with q: one of the cells the last insertion made,
+  /// when one is (consecutive points are neighbours in space, so q's cavity
+  /// often holds a cell of its predecessor's star), else the walk's. The
+  /// cavity is the same from any cell in it; a sphere test here saves
+  /// several walk steps (docs/engines.md has the figures).
+  std::size_t start_of_cavity(const Point& q) {
+    const std::size_t tries = std::min<std::size_t>(new_cells_.size(), star_tries);
+    for (std::size_t k = 0; k < tries; ++k)
+      if (proven_in_conflict(new_cells_[k], q)) return new_cells_[k];
+    return locate(q);
+  }
+
+  /// Whether the static filter alone proves cell c in conflict with q (false
+  /// when it cannot tell: on near-cospherical points the exact stage would
+  /// cost more than the walk it saves).
+  bool proven_in_conflict(std::size_t c, const Point& q) const {
+    const int i = infinite_position(c);
+    if (i > D) {
+      kernel::Point_refs<D, D + 2> refs;
+      for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c].v[k]];
+      refs[D + 1] = &q;
+      const auto s = static_filter_.side_of_oriented_sphere(refs);
+      return s && *s == kernel::POSITIVE;
+    }
+    kernel::Point_refs<D, D + 1> refs;
+    for (int k = 0; k <= D; ++k) refs[k] = k == i ? &q : &points_[cells_[c].v[k]];
+    const auto s = static_filter_.orientation(refs);
+    return s && *s == kernel::POSITIVE;
+  }
+
   /// A boundary facet of the cavity: the new cell's vertices (the old
   /// cell's, with the one opposite the facet replaced by the new point) and
   /// the neighbour reference outside.
@@ -359,7 +390,7 @@ class Incremental_delaunay {
   /// Steps 3a–b: cavity_ holds the cells in conflict with q, boundary_ the
   /// facets around them with the new cells' vertices (q as vertex v).
   void find_cavity(const Point& q, Index v) {
-    const std::size_t start_cell = locate(q);
+    const std::size_t start_cell = start_of_cavity(q);
     DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
 
     // 3b. The cavity, breadth-first; mark_: in conflict or not (clear_marks resets both).
@@ -671,6 +702,7 @@ class Incremental_delaunay {
   std::vector<Index> new_cells_;  // the slot of each boundary facet's new cell
   // glue_star_directed: the boundary vertices' numbers, the facets' directed
   // keys (and their reverses), the table by directed key.
+  static constexpr std::size_t star_tries = 64;  // start_of_cavity's cap (stars grow fast above 3D)
   static constexpr std::uint32_t star_table_side = 128;  // + D < local_table_size: the table never fills
   static constexpr int local_bits = 8;
   static constexpr std::uint32_t local_table_size = 1u << local_bits;
