@@ -44,13 +44,13 @@ enum class Engine {
 
 /// The incremental construction Engine::automatic leaves an input to (one
 /// region's size, a spent search budget, 4D and up) in dimension D: the
-/// project's own where it is faster than CGAL's on one thread (4D and up:
-/// half CGAL dD's time on uniform points), CGAL's in 2D and 3D, where what is
-/// left to it is mostly near-cospherical or a surface (spheres, shells,
-/// lattices, tori), on which ours is still slower than CGAL's.
+/// project's own where it is faster than CGAL's on one thread — in 3D on
+/// every class handed over (spheres, shells, lattices, tori, layers), above
+/// 3D on uniform points — and CGAL's in the plane, where what is handed over
+/// is mostly cocircular (points on a circle), on which ours is still slower.
 /// docs/engines.md has the measurements.
 constexpr Engine default_incremental_engine(int dimension) {
-  return dimension >= 4 ? Engine::incremental : Engine::cgal;
+  return dimension == 2 ? Engine::cgal : Engine::incremental;
 }
 
 /// The incremental construction of the hybrid's regions: the project's own in
