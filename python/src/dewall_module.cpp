@@ -37,6 +37,7 @@
 #include "dewall/kernel/dimension.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/locate.hpp"
+#include "convex_hull.hpp"
 
 namespace py = pybind11;
 
@@ -400,6 +401,26 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
   return out;
 }
 
+/// convex_hull(): (facets, neighbors, below, flat) as int32 arrays and a bool, or None when
+/// convex_hull.hpp declines (non-finite, too few or nearly flat points: the caller falls back).
+py::object convex_hull(py::handle points_in) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto dim) -> py::object {
+    constexpr int D = dim();
+    if (points.shape(0) > static_cast<py::ssize_t>(max_index)) throw py::value_error("too many points");
+    std::optional<dewall_python::Convex_hull<D>> hull;
+    {
+      py::gil_scoped_release release;
+      hull = dewall_python::convex_hull<D>(as_points<D>(points));
+    }
+    if (!hull) return py::none();
+    const auto m = static_cast<py::ssize_t>(hull->facets.size());
+    return py::make_tuple(adopt<std::int32_t>(std::move(hull->facets), {m, D}),
+                          adopt<std::int32_t>(std::move(hull->neighbors), {m, D}),
+                          adopt<std::int32_t>(std::move(hull->below), {m}), hull->flat);
+  });
+}
+
 py::dict violation_dict(const dewall::certify::Violation& v) {
   const auto index = [](std::size_t i) -> py::object {
     return i == dewall::certify::npos ? py::object(py::none()) : py::object(py::int_(i));
@@ -493,6 +514,7 @@ PYBIND11_MODULE(_dewall, m) {
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
   m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"));
+  m.def("convex_hull", &convex_hull, py::arg("points"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

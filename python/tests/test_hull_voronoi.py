@@ -77,6 +77,43 @@ def test_voronoi_equals_scipy(d, n, furthest, rng):
 # ---- ported from scipy's test_qhull.py ---------------------------------------------------------
 
 
+def _hull_via_delaunay(points):
+    """ConvexHull's other route: the exact Delaunay triangulation's boundary (4-D+ flat hulls,
+    nearly flat input), used here as the reference for Quickhull."""
+    hull = dewall.ConvexHull.__new__(dewall.ConvexHull)
+    hull.points, hull.ndim, hull.npoints = points, points.shape[1], points.shape[0]
+    hull._from_delaunay(dewall.Delaunay(points))
+    return hull
+
+
+@pytest.mark.parametrize("d", [2, 3, 4])
+def test_quickhull_equals_the_delaunay_boundary_on_degenerate_input(d, rng):
+    """Lattices with duplicates, rounded sphere points, a grid in random order: the same extreme
+    vertices, volume and area as the Delaunay route (in 4-D: its extreme points, a subset), a
+    closed facet graph, every point inside every facet's plane."""
+    for trial in range(12):
+        n = int(rng.integers(d + 2, 50))
+        kind = trial % 3
+        if kind == 0:
+            points = rng.integers(0, 3, (n, d)).astype(float)
+        elif kind == 1:
+            q = rng.normal(size=(n, d))
+            points = np.round(8 * q / np.linalg.norm(q, axis=1)[:, None])
+        else:
+            points = np.array(np.meshgrid(*[range(3)] * d)).reshape(d, -1).T.astype(float)
+            points = points[rng.permutation(len(points))]
+        ours, reference = dewall.ConvexHull(points), _hull_via_delaunay(points)
+        if d <= 3:
+            assert set(ours.vertices) == set(reference.vertices)
+        else:
+            assert set(ours.vertices) <= set(reference.vertices)
+        assert ours.volume == pytest.approx(reference.volume, rel=1e-9)
+        assert ours.area == pytest.approx(reference.area, rel=1e-9)
+        assert (ours.neighbors >= 0).all()
+        assert all(i in ours.neighbors[j] for i in range(ours.nsimplex) for j in ours.neighbors[i])
+        assert (ours.equations[:, :-1] @ points.T + ours.equations[:, -1:] <= 1e-12).all()
+
+
 def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
     for cls in (dewall.ConvexHull, dewall.Voronoi):
         with pytest.raises(ValueError):
