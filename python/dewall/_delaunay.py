@@ -396,15 +396,45 @@ class Delaunay:
         if not eps >= 0:
             raise ValueError(f"tol must be a non-negative number, not {tol!r}")
         flat = as_coordinates(xi.reshape(-1, self.ndim), "xi")
-        if flat.shape[0] > 64:  # walk in space-filling-curve order: each walk starts near its answer
-            order = _morton_order(flat, self.min_bound, self.max_bound)
-            found = np.empty(flat.shape[0], dtype=np.int32)
-            found[order] = self._triangulation.locate(np.ascontiguousarray(flat[order]))
-        else:
-            found = self._triangulation.locate(flat)
+        found = self._in_walk_order(self._triangulation.locate, flat)
         if eps > 0:
             self._within_tolerance(flat, found, eps)
         return found.reshape(xi.shape[:-1])
+
+    def _in_walk_order(self, locate, flat, *args):
+        """locate(queries, *args) (arrays with a row per query) on `flat` sorted along a space-filling
+        curve, so that each walk starts near its answer; the rows back in the order of `flat`."""
+        if flat.shape[0] <= 64:
+            return locate(flat, *args)
+        order = _morton_order(flat, self.min_bound, self.max_bound)
+        answer = locate(np.ascontiguousarray(flat[order]), *args)
+        if isinstance(answer, tuple):
+            out = tuple(np.empty_like(a) for a in answer)
+            for o, a in zip(out, answer):
+                o[order] = a
+            return out
+        out = np.empty_like(answer)
+        out[order] = answer
+        return out
+
+    def _simplices_and_weights(self, flat):
+        """For queries `flat` (q, ndim), float64 C-contiguous: find_simplex's answer (default tol)
+        and the barycentric coordinates in that simplex, from its row of `transform` (NaN where
+        that row is NaN, and for -1). In 2-D and 3-D computed during the walk, for the simplices
+        found only (LinearNDInterpolator on 10^6 points: no transform of all the simplices)."""
+        if self.ndim > 3 or "transform" in self.__dict__:
+            found = self.find_simplex(flat)
+            weights = np.full((flat.shape[0], self.ndim + 1), np.nan)
+            inside = found >= 0
+            weights[inside] = barycentric(self.transform[found[inside]], flat[inside])
+            return found, weights
+        found, weights = self._in_walk_order(self._triangulation.locate_weights, flat, _RCOND_LIMIT)
+        exact = found.copy()
+        self._within_tolerance(flat, found, _DEFAULT_TOL)
+        near = np.nonzero((exact == -1) & (found >= 0))[0]
+        if near.size:
+            weights[near] = barycentric(barycentric_transforms(self.points, self.simplices[found[near]]), flat[near])
+        return found, weights
 
     @property
     def _hull_simplices(self):
