@@ -7,10 +7,13 @@ of its edges. Topology is exact; coordinates, normals, volumes are floating
 point from the points.
 """
 
+import re
+
 import numpy as np
 
 from . import _dewall
 from ._arrays import as_coordinates
+from ._errors import InvalidOption
 from ._boundary import extreme_hull_edges_2d, extreme_ring_2d, merge_flat_faces_3d, ridge_pairs
 from ._delaunay import (Delaunay, _check_qhull_options, _check_threads, _determinants, _option_in_effect,
                         _refuse_masked)
@@ -42,6 +45,24 @@ class _FromDelaunay:
         self._tri.close()
 
 
+def _good_option(options):
+    """qhull_options without a "QGn" / "QG-n" token, and (n, whether good means visible) or None."""
+    if options is None:
+        return None, None
+    if isinstance(options, bytes):
+        options = options.decode("ascii")
+    if not isinstance(options, str):
+        return options, None  # _check_qhull_options says why
+    good, rest = None, []
+    for token in options.split():
+        match = re.fullmatch(r"QG(-?)([0-9]+)", token)
+        if match:
+            good = (int(match.group(2)), match.group(1) != "-")
+        else:
+            rest.append(token)
+    return " ".join(rest), good
+
+
 class ConvexHull:
     """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
 
@@ -49,7 +70,7 @@ class ConvexHull:
 
     Attributes (as scipy's): points, vertices (2-D: counterclockwise), simplices (the facets,
     triangulated), neighbors, equations (outward unit normal, offset; normal . x + offset <= 0
-    inside), coplanar, good (None), volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
+    inside), coplanar, good, volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
 
     Built by Quickhull with the library's exact orientation predicate (python/src/convex_hull.hpp):
     only the hull, no triangulation of the inside. Only the extreme points are vertices, as
@@ -61,10 +82,16 @@ class ConvexHull:
     `engine` and `threads` steer only that Delaunay triangulation. `coplanar` is empty: Qhull
     (option Qc) lists points it could not place for rounding, and neither boundary points nor
     duplicates (checked with scipy 1.10). Incremental mode recomputes from all the points.
+
+    qhull_options "QGn" (Qhull's good facets): the hull of all the points but point n, and
+    `good[i]` true when point n sees facet i strictly (exact orientation; a point in the
+    facet's hyperplane does not see it); "QG-n": true for the others. Without it `good` is None.
+    The facets' order is not Qhull's, so compare `good` together with `simplices`.
     """
 
     def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None):
         _refuse_masked(points, "Input points")
+        qhull_options, self._good_point = _good_option(qhull_options)
         self._qhull_options = _check_qhull_options(qhull_options)
         self._engine, self._threads = str(engine), _check_threads(threads)
         self._incremental, self._closed = bool(incremental), False
@@ -84,6 +111,34 @@ class ConvexHull:
         self._closed = True
 
     def _build(self, points):
+        keep = None
+        if self._good_point is not None:  # QGn: the hull of the other points, then `good` from point n
+            n = self._good_point[0]
+            if not n < points.shape[0]:
+                raise InvalidOption(f"qhull option 'QG{n}': there is no point {n} ({points.shape[0]} points)")
+            keep = np.delete(np.arange(points.shape[0]), n)
+            self._hull(np.ascontiguousarray(points[keep]))
+            self.simplices, self.vertices = keep[self.simplices].astype(np.int32), keep[self.vertices].astype(np.int32)
+        else:
+            self._hull(points)
+        self.points, self.npoints = points, points.shape[0]
+        self._bounds = None
+        self.nsimplex = self.simplices.shape[0]
+        self.coplanar = np.empty((0, 3), dtype=np.int32)
+        self.good = None if keep is None else self._good()
+
+    def _good(self):
+        """QGn: the facets that point n sees strictly (exact orientation: a point in a facet's
+        hyperplane does not see it, as in Qhull with scipy's options); QG-n: the others."""
+        n, visible = self._good_point
+        rows = np.column_stack((self.simplices, np.full(self.nsimplex, n))).astype(np.uint32)
+        sign = _dewall.predicate_signs(self.points, rows, 0)
+        # the inside's sign: 2-D edges run counterclockwise (inside on their left, positive),
+        # facets in 3-D and up are stored with the inside on their negative side
+        sees = sign < 0 if self.ndim == 2 else sign > 0
+        return sees if visible else ~sees
+
+    def _hull(self, points):
         self.points, self.ndim, self.npoints = points, points.shape[1], points.shape[0]
         d = self.ndim
         if not 2 <= d <= 6:  # the Delaunay code's message
@@ -101,10 +156,6 @@ class ConvexHull:
                     facets, below, _ = merge_flat_faces_3d(points, facets, below)
                     neighbors = ridge_pairs(facets)
                 self._facets(facets, neighbors, below)
-        self._bounds = None
-        self.nsimplex = self.simplices.shape[0]
-        self.coplanar = np.empty((0, 3), dtype=np.int32)
-        self.good = None
 
     @property
     def min_bound(self):

@@ -261,3 +261,27 @@ def test_3d_ridges_in_cyclic_order(rng):
         turns = [np.dot(np.cross(finite[(k + 1) % m] - finite[k], finite[(k + 2) % m] - finite[(k + 1) % m]), axis)
                  for k in range(m - (2 if -1 in ridge else 0))]
         assert (np.array(turns) > 0).all() or (np.array(turns) < 0).all()
+
+
+def _good_facets(hull):
+    return {tuple(sorted(f)) for f, good in zip(hull.simplices.tolist(), hull.good) if good}
+
+
+@pytest.mark.parametrize("option", ["QG4", "QG-4"])
+def test_good_facets_as_scipy(option, rng):  # TestConvexHull.test_good2d*, test_good3d, compared as sets
+    square = np.array([[0.2, 0.2], [0.2, 0.4], [0.4, 0.4], [0.4, 0.2], [0.3, 0.6]])
+    for extra in ([[0.3, 0.7]], [[0.3, -0.7]], [[0.3, 0.41]], [[0.5, 0.6], [0.6, 0.6]], [[0.3, 0.6 + 1e-16]]):
+        ours = dewall.ConvexHull(square, incremental=True, qhull_options=option)
+        theirs = ss.ConvexHull(square, incremental=True, qhull_options=option)
+        ours.add_points(np.array(extra))
+        theirs.add_points(np.array(extra))
+        assert _good_facets(ours) == _good_facets(theirs)
+        assert ours.good.dtype == bool and ours.nsimplex == theirs.nsimplex
+    for d in (2, 3):
+        points = rng.random((25, d))
+        options = option.replace("4", "7")
+        ours, theirs = dewall.ConvexHull(points, qhull_options=options), ss.ConvexHull(points, qhull_options=options)
+        assert _good_facets(ours) == _good_facets(theirs) and 7 not in ours.vertices
+    assert dewall.ConvexHull(square).good is None
+    with pytest.raises(dewall.InvalidOption):
+        dewall.ConvexHull(square, qhull_options="QG5")
