@@ -102,9 +102,8 @@ class Delaunay:
         every point), exact, by gift wrapping over the hull vertices with the
         library's predicates (dewall/_furthest_site.py); cospherical hull
         vertices resolved by the library's symbolic perturbation. Points
-        inside hull edges and faces are set aside exactly in 2-D and 3-D; a
-        3-D hull all of whose faces are flat polygons of 4 or more corners
-        (a cube, a box-shaped grid), and 4-D+ hulls with such faces, raise
+        inside hull edges and faces are set aside exactly in 2-D and 3-D
+        (a cube, a box-shaped grid work); 4-D+ hulls with flat facets raise
         NotImplementedError: no start facet is known there yet.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
