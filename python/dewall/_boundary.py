@@ -104,6 +104,27 @@ def merge_flat_faces_3d(points, facets, inside):
     return np.array(out, dtype=np.int32), np.array(out_inside, dtype=np.int64), np.array(whole)
 
 
+def quickhull_facets(points):
+    """The convex hull's facets on its extreme points by the compiled exact Quickhull (python/src/
+    convex_hull.hpp): (facets, whether each is a whole face of the hull), as the furthest-site
+    construction takes them; None when Quickhull declines (non-finite, too few or nearly flat
+    points) or finds flat facets in 4-D and up: the caller then takes the Delaunay route."""
+    hull = _dewall.convex_hull(points)
+    if hull is None:
+        return None
+    facets, _, below, flat = hull
+    d = points.shape[1]
+    if d == 2:  # Quickhull's edges run clockwise: their ends, reversed, are the ring counterclockwise
+        edges = extreme_ring_2d(points, facets[::-1, 1].astype(np.int64), collinear=flat)
+        return edges, np.ones(len(edges), dtype=bool)
+    if d == 3 and flat:
+        facets, _, whole = merge_flat_faces_3d(points, facets, below)
+        return facets, whole
+    if flat:
+        return None
+    return facets, np.ones(len(facets), dtype=bool)
+
+
 def ridge_pairs(facets):
     """Each facet's ridges (the facet without its vertex j) matched in pairs: neighbors[i, j]
     is the facet sharing the ridge of facet i opposite its vertex j (-1 when none)."""

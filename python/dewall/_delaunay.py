@@ -8,13 +8,14 @@ find_simplex), computed from the points as scipy computes them.
 
 import os
 import re
+import time
 
 import numpy as np
 
 from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
-from ._boundary import extreme_facets_3d, extreme_hull_edges_2d
+from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
 from ._furthest_site import furthest_site_simplices
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
@@ -163,6 +164,16 @@ class Delaunay:
         self._forget()
         self._statistics = None
         self.points = points
+        start = time.perf_counter()
+        hull = quickhull_facets(points) if self.furthest_site else None
+        if hull is not None:  # the furthest-site triangulation needs only the hull (None: the Delaunay route)
+            simplices = furthest_site_simplices(points, *hull)
+            self._triangulation = _dewall.from_simplices(points, simplices.astype(np.uint32))
+            self._statistics = dict(self._triangulation.statistics, engine="furthest-site (Quickhull, gift wrapping)",
+                                    input_points=points.shape[0], simplices=len(simplices),
+                                    build_seconds=time.perf_counter() - start)
+            self._set_bounds()
+            return
         self._triangulation = _triangulate(points, self._engine, self._threads)
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
@@ -368,7 +379,9 @@ class Delaunay:
     @property
     def statistics(self):
         """Counters of the run: the engine that built the simplices ("dewall", "hybrid", "incremental" or "cgal"),
-        distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`)."""
+        distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`). With furthest_site,
+        those of the Delaunay triangulation it started from, or (engine "furthest-site (Quickhull, gift
+        wrapping)") only input_points, simplices and build_seconds when it needed the hull alone."""
         return self._statistics if self._statistics is not None else self._triangulation.statistics
 
     # ---- point location ----------------------------------------------------------------------
