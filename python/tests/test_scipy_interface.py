@@ -414,3 +414,28 @@ def test_furthest_site_ties():
     # 4-D with a flat hull facet (a tesseract): refused, not guessed
     with pytest.raises(NotImplementedError, match="4-D and up"):
         dewall.Delaunay(np.array(list(itertools.product([0, 1], repeat=4)), dtype=float), furthest_site=True)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_furthest_site_routes_agree(d, rng):
+    """furthest_site from the Quickhull hull equals it from the Delaunay triangulation's boundary
+    (the perturbed furthest-site triangulation is unique) on lattices and rounded sphere points."""
+    from dewall._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
+    from dewall._delaunay import _hull_facets
+    from dewall._furthest_site import furthest_site_simplices
+
+    for trial in range(8):
+        if trial % 2:
+            points = rng.integers(0, 3, (int(rng.integers(8, 30)), d)).astype(float)
+        else:
+            q = rng.normal(size=(30, d))
+            points = np.round(5 * q / np.linalg.norm(q, axis=1)[:, None])
+        tri = dewall.Delaunay(points)
+        if d == 2:
+            hull = extreme_hull_edges_2d(points, tri.simplices, tri.neighbors)
+            whole = np.ones(len(hull), dtype=bool)
+        else:
+            hull, _, whole = extreme_facets_3d(points, tri.simplices, tri.neighbors,
+                                               _hull_facets(tri.simplices, tri.neighbors))
+        assert simplex_set(furthest_site_simplices(points, hull, whole)) == simplex_set(
+            furthest_site_simplices(points, *quickhull_facets(points)))
