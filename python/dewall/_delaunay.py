@@ -8,13 +8,14 @@ find_simplex), computed from the points as scipy computes them.
 
 import os
 import re
+import time
 
 import numpy as np
 
 from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
-from ._boundary import extreme_facets_3d, extreme_hull_edges_2d
+from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
 from ._furthest_site import furthest_site_simplices
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
@@ -102,9 +103,8 @@ class Delaunay:
         every point), exact, by gift wrapping over the hull vertices with the
         library's predicates (dewall/_furthest_site.py); cospherical hull
         vertices resolved by the library's symbolic perturbation. Points
-        inside hull edges and faces are set aside exactly in 2-D and 3-D; a
-        3-D hull all of whose faces are flat polygons of 4 or more corners
-        (a cube, a box-shaped grid), and 4-D+ hulls with such faces, raise
+        inside hull edges and faces are set aside exactly in 2-D and 3-D
+        (a cube, a box-shaped grid work); 4-D+ hulls with flat facets raise
         NotImplementedError: no start facet is known there yet.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
@@ -164,6 +164,16 @@ class Delaunay:
         self._forget()
         self._statistics = None
         self.points = points
+        start = time.perf_counter()
+        hull = quickhull_facets(points) if self.furthest_site else None
+        if hull is not None:  # the furthest-site triangulation needs only the hull (None: the Delaunay route)
+            simplices = furthest_site_simplices(points, *hull)
+            self._triangulation = _dewall.from_simplices(points, simplices.astype(np.uint32))
+            self._statistics = dict(self._triangulation.statistics, engine="furthest-site (Quickhull, gift wrapping)",
+                                    input_points=points.shape[0], simplices=len(simplices),
+                                    build_seconds=time.perf_counter() - start)
+            self._set_bounds()
+            return
         self._triangulation = _triangulate(points, self._engine, self._threads)
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
@@ -369,7 +379,9 @@ class Delaunay:
     @property
     def statistics(self):
         """Counters of the run: the engine that built the simplices ("dewall", "hybrid", "incremental" or "cgal"),
-        distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`)."""
+        distinct points, simplices, build_seconds, … (as `dewall triangulate --stats`). With furthest_site,
+        those of the Delaunay triangulation it started from, or (engine "furthest-site (Quickhull, gift
+        wrapping)") only input_points, simplices and build_seconds when it needed the hull alone."""
         return self._statistics if self._statistics is not None else self._triangulation.statistics
 
     # ---- point location ----------------------------------------------------------------------
@@ -396,15 +408,45 @@ class Delaunay:
         if not eps >= 0:
             raise ValueError(f"tol must be a non-negative number, not {tol!r}")
         flat = as_coordinates(xi.reshape(-1, self.ndim), "xi")
-        if flat.shape[0] > 64:  # walk in space-filling-curve order: each walk starts near its answer
-            order = _morton_order(flat, self.min_bound, self.max_bound)
-            found = np.empty(flat.shape[0], dtype=np.int32)
-            found[order] = self._triangulation.locate(np.ascontiguousarray(flat[order]))
-        else:
-            found = self._triangulation.locate(flat)
+        found = self._in_walk_order(self._triangulation.locate, flat)
         if eps > 0:
             self._within_tolerance(flat, found, eps)
         return found.reshape(xi.shape[:-1])
+
+    def _in_walk_order(self, locate, flat, *args):
+        """locate(queries, *args) (arrays with a row per query) on `flat` sorted along a space-filling
+        curve, so that each walk starts near its answer; the rows back in the order of `flat`."""
+        if flat.shape[0] <= 64:
+            return locate(flat, *args)
+        order = _morton_order(flat, self.min_bound, self.max_bound)
+        answer = locate(np.ascontiguousarray(flat[order]), *args)
+        if isinstance(answer, tuple):
+            out = tuple(np.empty_like(a) for a in answer)
+            for o, a in zip(out, answer):
+                o[order] = a
+            return out
+        out = np.empty_like(answer)
+        out[order] = answer
+        return out
+
+    def _simplices_and_weights(self, flat):
+        """For queries `flat` (q, ndim), float64 C-contiguous: find_simplex's answer (default tol)
+        and the barycentric coordinates in that simplex, from its row of `transform` (NaN where
+        that row is NaN, and for -1). In 2-D and 3-D computed during the walk, for the simplices
+        found only (LinearNDInterpolator on 10^6 points: no transform of all the simplices)."""
+        if self.ndim > 3 or "transform" in self.__dict__:
+            found = self.find_simplex(flat)
+            weights = np.full((flat.shape[0], self.ndim + 1), np.nan)
+            inside = found >= 0
+            weights[inside] = barycentric(self.transform[found[inside]], flat[inside])
+            return found, weights
+        found, weights = self._in_walk_order(self._triangulation.locate_weights, flat, _RCOND_LIMIT)
+        exact = found.copy()
+        self._within_tolerance(flat, found, _DEFAULT_TOL)
+        near = np.nonzero((exact == -1) & (found >= 0))[0]
+        if near.size:
+            weights[near] = barycentric(barycentric_transforms(self.points, self.simplices[found[near]]), flat[near])
+        return found, weights
 
     @property
     def _hull_simplices(self):

@@ -31,10 +31,12 @@ consistent triangulation, each circumsphere still containing every point (checke
 with the unperturbed test at the end, and the volumes against the hull's). Points
 inside hull edges and faces are never vertices; in 2-D and 3-D they are set aside
 first (_boundary), and the construction starts from a whole hull face (a triangle
-on extreme points: the triangulation must have it). A 3-D hull without one (a
-cube, a box-shaped grid: all faces flat with 4 or more corners), and 4-D+ hulls
-with a hull vertex in a facet's hyperplane, raise NotImplementedError rather than
-return a guess.
+on extreme points: the triangulation must have it), or, in a 3-D hull without one
+(a cube, a box-shaped grid: all faces flat with 4 or more corners), from a hull
+edge (_start_on_flat_face). 4-D+ hulls with a hull vertex in a facet's hyperplane
+raise NotImplementedError rather than return a guess: their facets come from the
+Delaunay triangulation's boundary, points inside flat facets included, and no
+start is known there yet.
 """
 
 from collections import deque
@@ -42,9 +44,9 @@ from collections import deque
 import numpy as np
 
 from . import _dewall
+from ._boundary import ridge_pairs
 
-_COPLANAR = ("furthest_site=True: the convex hull has flat faces with 4 or more corners and no triangular face "
-             "to start from (a cube, a box-shaped grid), or such faces in 4-D and up (a hull vertex in a hull "
+_COPLANAR = ("furthest_site=True: the convex hull has flat facets (in 4-D and up: a hull vertex in a hull "
              "facet's hyperplane); dewall does not construct that furthest-site triangulation yet")
 
 
@@ -75,8 +77,6 @@ def furthest_site_simplices(points, hull_facets, whole=None):
             if (orientation(np.column_stack([np.tile(facet, (others.size, 1)), others])) == 0).any():
                 raise NotImplementedError(_COPLANAR)
         whole = np.ones(len(hull_facets), dtype=bool)
-    elif not whole.any():
-        raise NotImplementedError(_COPLANAR)
 
     def pivot(ridge, apex_side):
         """The vertex completing `ridge` beyond it (the side of sign -apex_side), or None."""
@@ -96,11 +96,22 @@ def furthest_site_simplices(points, hull_facets, whole=None):
                 return best
             best = outside[0]
 
-    start = [int(v) for v in hull_facets[int(np.argmax(whole))]]
-    side = orientation(np.column_stack([np.tile(start, (vertices.size, 1)), vertices]))
-    inner = int(side[side != 0][0])  # every hull vertex is on one side of a hull facet
-    first = pivot(start, -inner)
-    simplices = {tuple(sorted(start + [int(first)]))}
+    def inward(ridge):
+        """The simplex beyond `ridge`, a triangle in a hull facet's hyperplane, on the hull's side."""
+        side = orientation(np.column_stack([np.tile(ridge, (vertices.size, 1)), vertices]))
+        inner = int(side[side != 0][0])  # every hull vertex is on one side of a hull facet
+        return tuple(sorted(list(ridge) + [int(pivot(list(ridge), -inner))]))
+
+    def furthest_site(simplex):
+        """Whether the perturbed sphere of `simplex` contains every other hull vertex."""
+        others = vertices[~np.isin(vertices, simplex)]
+        return bool((signs(np.column_stack([np.tile(positive(simplex), (others.size, 1)), others]), 2) > 0).all())
+
+    if whole.any():  # a whole hull face is a face of every triangulation of the hull vertices
+        first = inward([int(v) for v in hull_facets[int(np.argmax(whole))]])
+    else:
+        first = _start_on_flat_face(hull_facets, vertices, orientation, inward, furthest_site)
+    simplices = {first}
     queue = deque(simplices)
     matched = set()
     while queue:
@@ -132,6 +143,32 @@ def furthest_site_simplices(points, hull_facets, whole=None):
         if (signs(np.column_stack([np.tile(simplex, (others.size, 1)), others]), 1) < 0).any():
             raise RuntimeError("dewall: the furthest-site construction failed its check (a bug: please report)")
     return result
+
+
+def _start_on_flat_face(hull_facets, vertices, orientation, inward, furthest_site):
+    """3-D, every hull face flat with 4 or more corners (a cube): a first simplex. An edge (a, b)
+    of the hull polytope is an edge of every triangulation of the hull vertices, so exactly one
+    triangle (a, b, c) of the furthest-site triangulation lies in a face F through it, c a corner
+    of F; pivoting inward from the right one gives a simplex whose perturbed sphere contains
+    every hull vertex, from any other one a simplex whose sphere does not (the perturbed
+    furthest-site triangulation is unique). So: try each corner c of F."""
+    facets = np.asarray(hull_facets, dtype=np.int64)
+    neighbors = ridge_pairs(facets)
+    for f, facet in enumerate(facets):
+        for j in range(3):
+            g = neighbors[f, j]
+            across = [v for v in facets[g] if v not in facet][0]
+            if orientation([list(facet) + [across]])[0] == 0:
+                continue  # inside a flat face: not an edge of the polytope
+            a, b = (int(v) for k, v in enumerate(facet) if k != j)
+            in_plane = orientation(np.column_stack([np.tile(facet, (vertices.size, 1)), vertices])) == 0
+            for c in vertices[in_plane]:
+                if c in (a, b):
+                    continue
+                simplex = inward([a, b, int(c)])
+                if furthest_site(simplex):
+                    return simplex
+    raise NotImplementedError(_COPLANAR)
 
 
 def _hull_volume(points, hull_facets, vertices):

@@ -7,10 +7,16 @@ of its edges. Topology is exact; coordinates, normals, volumes are floating
 point from the points.
 """
 
+import re
+
 import numpy as np
 
-from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, ridge_pairs
-from ._delaunay import Delaunay, _determinants, _option_in_effect
+from . import _dewall
+from ._arrays import as_coordinates
+from ._errors import InvalidOption
+from ._boundary import extreme_hull_edges_2d, extreme_ring_2d, merge_flat_faces_3d, ridge_pairs
+from ._delaunay import (Delaunay, _check_qhull_options, _check_threads, _determinants, _option_in_effect,
+                        _refuse_masked)
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -39,46 +45,154 @@ class _FromDelaunay:
         self._tri.close()
 
 
-class ConvexHull(_FromDelaunay):
+def _good_option(options):
+    """qhull_options without a "QGn" / "QG-n" token, and (n, whether good means visible) or None."""
+    if options is None:
+        return None, None
+    if isinstance(options, bytes):
+        options = options.decode("ascii")
+    if not isinstance(options, str):
+        return options, None  # _check_qhull_options says why
+    good, rest = None, []
+    for token in options.split():
+        match = re.fullmatch(r"QG(-?)([0-9]+)", token)
+        if match:
+            good = (int(match.group(2)), match.group(1) != "-")
+        else:
+            rest.append(token)
+    return " ".join(rest), good
+
+
+class ConvexHull:
     """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
 
     ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None)
 
     Attributes (as scipy's): points, vertices (2-D: counterclockwise), simplices (the facets,
     triangulated), neighbors, equations (outward unit normal, offset; normal . x + offset <= 0
-    inside), coplanar, good (None), volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
+    inside), coplanar, good, volume, area, min_bound, max_bound, ndim, npoints, nsimplex.
 
-    The facets are the boundary facets of the exact Delaunay triangulation, so on random
-    points they are Qhull's. In 2-D and 3-D only the extreme points are vertices, as Qhull's:
-    points inside a hull edge or flat face (a grid's sides, a cube's faces) are set aside
-    exactly, and a flat face is a fan over its corners. In 4-D and up such points are still
-    vertices here, each flat facet triangulated by CGAL's perturbation. `coplanar` is empty:
-    Qhull (option Qc) lists points it could not place for rounding, and neither boundary
-    points nor duplicates (checked with scipy 1.10).
+    Built by Quickhull with the library's exact orientation predicate (python/src/convex_hull.hpp):
+    only the hull, no triangulation of the inside. Only the extreme points are vertices, as
+    Qhull's: points inside a hull edge or flat face (a grid's sides, a cube's faces) are set
+    aside exactly, and in 2-D and 3-D a flat face is a fan over its corners. In 4-D and up a
+    hull with flat facets is the boundary of the exact Delaunay triangulation instead (points
+    inside a flat facet are vertices there, the facet triangulated by CGAL's perturbation), as
+    are nearly flat inputs (the exact Delaunay code then raises DegenerateInput or copes).
+    `engine` and `threads` steer only that Delaunay triangulation. `coplanar` is empty: Qhull
+    (option Qc) lists points it could not place for rounding, and neither boundary points nor
+    duplicates (checked with scipy 1.10). Incremental mode recomputes from all the points.
+
+    qhull_options "QGn" (Qhull's good facets): the hull of all the points but point n, and
+    `good[i]` true when point n sees facet i strictly (exact orientation; a point in the
+    facet's hyperplane does not see it); "QG-n": true for the others. Without it `good` is None.
+    The facets' order is not Qhull's, so compare `good` together with `simplices`.
     """
 
-    def _compute(self):
-        tri = self._tri
-        d = self.ndim
-        full = self.points[tri.simplices]
-        factorial = float(np.prod(np.arange(1, d + 1)))
-        self.volume = float(np.abs(_determinants(full[:, 1:, :] - full[:, :1, :])).sum() / factorial)
-        if d == 2:
-            self._boundary_2d()
+    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None):
+        _refuse_masked(points, "Input points")
+        qhull_options, self._good_point = _good_option(qhull_options)
+        self._qhull_options = _check_qhull_options(qhull_options)
+        self._engine, self._threads = str(engine), _check_threads(threads)
+        self._incremental, self._closed = bool(incremental), False
+        self._build(as_coordinates(points))
+
+    def add_points(self, points, restart=False):
+        """As scipy: needs incremental=True and no close(); dewall recomputes from all the points."""
+        if not self._incremental or self._closed:
+            raise RuntimeError("incremental mode not enabled or already closed")
+        _refuse_masked(points, "Input points")
+        new = as_coordinates(points)
+        if new.shape[1] != self.ndim:
+            raise ValueError(f"the new points have dimension {new.shape[1]}, the hull {self.ndim}")
+        self._build(np.concatenate((self.points, new)))
+
+    def close(self):
+        self._closed = True
+
+    def _build(self, points):
+        keep = None
+        if self._good_point is not None:  # QGn: the hull of the other points, then `good` from point n
+            n = self._good_point[0]
+            if not n < points.shape[0]:
+                raise InvalidOption(f"qhull option 'QG{n}': there is no point {n} ({points.shape[0]} points)")
+            keep = np.delete(np.arange(points.shape[0]), n)
+            self._hull(np.ascontiguousarray(points[keep]))
+            self.simplices, self.vertices = keep[self.simplices].astype(np.int32), keep[self.vertices].astype(np.int32)
         else:
-            extreme = None
-            if d == 3:
-                extreme = extreme_facets_3d(self.points, tri.simplices, tri.neighbors, tri.convex_hull)[:2]
-            self._boundary(factorial, extreme)
+            self._hull(points)
+        self.points, self.npoints = points, points.shape[0]
+        self._bounds = None
         self.nsimplex = self.simplices.shape[0]
         self.coplanar = np.empty((0, 3), dtype=np.int32)
-        self.good = None
+        self.good = None if keep is None else self._good()
 
-    def _boundary_2d(self):
+    def _good(self):
+        """QGn: the facets that point n sees strictly (exact orientation: a point in a facet's
+        hyperplane does not see it, as in Qhull with scipy's options); QG-n: the others."""
+        n, visible = self._good_point
+        rows = np.column_stack((self.simplices, np.full(self.nsimplex, n))).astype(np.uint32)
+        sign = _dewall.predicate_signs(self.points, rows, 0)
+        # the inside's sign: 2-D edges run counterclockwise (inside on their left, positive),
+        # facets in 3-D and up are stored with the inside on their negative side
+        sees = sign < 0 if self.ndim == 2 else sign > 0
+        return sees if visible else ~sees
+
+    def _hull(self, points):
+        self.points, self.ndim, self.npoints = points, points.shape[1], points.shape[0]
+        d = self.ndim
+        if not 2 <= d <= 6:  # the Delaunay code's message
+            Delaunay(points, engine=self._engine, threads=self._threads)
+        hull = _dewall.convex_hull(points)
+        if hull is None or (hull[3] and d > 3):
+            self._from_delaunay(Delaunay(points, False, False, self._qhull_options, engine=self._engine,
+                                         threads=self._threads))
+        else:
+            facets, neighbors, below, flat = hull
+            if d == 2:
+                self._polygon(facets, flat)
+            else:
+                if d == 3 and flat:
+                    facets, below, _ = merge_flat_faces_3d(points, facets, below)
+                    neighbors = ridge_pairs(facets)
+                self._facets(facets, neighbors, below)
+
+    @property
+    def min_bound(self):
+        """The smallest coordinate along each axis, over all points (computed on first use)."""
+        if self._bounds is None:
+            self._bounds = (self.points.min(axis=0), self.points.max(axis=0))
+        return self._bounds[0]
+
+    @property
+    def max_bound(self):
+        """The largest coordinate along each axis, over all points (computed on first use)."""
+        self.min_bound
+        return self._bounds[1]
+
+    def _from_delaunay(self, tri):
+        """The boundary facets of the exact Delaunay triangulation `tri`."""
+        simplex, opposite = np.nonzero(tri.neighbors == -1)
+        if self.ndim == 2:
+            edges = extreme_hull_edges_2d(self.points, tri.simplices, tri.neighbors)
+            self._polygon_edges(edges)
+            return
+        facets, inside = tri.convex_hull.astype(np.int64), tri.simplices[simplex, opposite].astype(np.int64)
+        flip = _dewall.predicate_signs(self.points, np.column_stack((facets, inside)).astype(np.uint32), 0) > 0
+        facets[flip] = facets[flip][:, [1, 0] + list(range(2, self.ndim))]  # inside on the negative side
+        if self.ndim == 3:
+            facets, inside, _ = merge_flat_faces_3d(self.points, facets, inside)
+        self._facets(facets, ridge_pairs(facets), inside)
+
+    def _polygon(self, facets, flat):
+        """2-D from Quickhull's edges (a, b), in clockwise order along the boundary (the inside
+        on their right); reversed, counterclockwise."""
+        ring = facets[::-1, 1].astype(np.int64)  # each edge's end, counterclockwise: b, then the a before it
+        self._polygon_edges(extreme_ring_2d(self.points, ring, collinear=flat))
+
+    def _polygon_edges(self, edges):
         """2-D: the polygon of the extreme points, counterclockwise; facet i runs from vertex i to
         vertex i + 1, its neighbours are facets i + 1 (opposite its first vertex) and i - 1."""
-        tri = self._tri
-        edges = extreme_hull_edges_2d(self.points, tri.simplices, tri.neighbors)
         k = np.arange(len(edges))
         self.simplices = edges.astype(np.int32)
         self.vertices = edges[:, 0].astype(np.int32)
@@ -89,24 +203,28 @@ class ConvexHull(_FromDelaunay):
         normal = np.column_stack((delta[:, 1], -delta[:, 0])) / length[:, None]  # right of a counterclockwise edge
         self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, start)))
         self.area = float(length.sum())
+        x, y = self.points[edges[:, 0], 0], self.points[edges[:, 0], 1]
+        xn, yn = self.points[edges[:, 1], 0], self.points[edges[:, 1], 1]
+        x0, y0 = x.mean(), y.mean()  # the shoelace formula about the vertices' mean, for accuracy
+        self.volume = float(((x - x0) * (yn - y0) - (xn - x0) * (y - y0)).sum() / 2)
 
-    def _boundary(self, factorial, extreme=None):
-        """3-D and up: the Delaunay triangulation's boundary facets, or `extreme` (facets, a point
-        inside for each) when given."""
-        tri, d = self._tri, self.ndim
-        if extreme is None:
-            simplex, opposite = np.nonzero(tri.neighbors == -1)
-            self.simplices, inside = tri.convex_hull, tri.simplices[simplex, opposite]
-        else:
-            self.simplices, inside = extreme
-        self.neighbors = ridge_pairs(self.simplices)
+    def _facets(self, facets, neighbors, inside):
+        """3-D and up: facets (each with `inside`, a point strictly on its inner side), their
+        neighbours; equations, area, and the volume as a sum of cones from the vertices' mean."""
+        d = self.ndim
+        factorial = float(np.prod(np.arange(1, d + 1)))
+        self.simplices = np.ascontiguousarray(facets, dtype=np.int32)
+        self.neighbors = np.ascontiguousarray(neighbors, dtype=np.int32)
         self.vertices = np.unique(self.simplices).astype(np.int32)
         corners = self.points[self.simplices]  # (m, d, d)
         edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
         normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
-        inner = self.points[inside]  # a point inside: the simplex's other vertex
+        inner = self.points[inside]
         normal *= np.where(np.einsum("ij,ij->i", normal, inner - corners[:, 0, :]) > 0, -1.0, 1.0)[:, None]
         length = np.linalg.norm(normal, axis=1)
+        # each facet's cone from the vertices' mean: |normal| (d-1)! facet measure times the height, over d!
+        centre = self.points[self.vertices].mean(axis=0)
+        self.volume = float(np.einsum("ij,ij->i", normal, corners[:, 0, :] - centre).sum() / factorial)
         normal /= length[:, None]
         self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, corners[:, 0, :])))
         self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure

@@ -119,14 +119,14 @@ class LinearNDInterpolator(_Interpolator):
 
     def _evaluate(self, xi):
         tri = self.tri
-        simplex = tri.find_simplex(xi)
+        simplex, weights = tri._simplices_and_weights(xi)
         inside = np.nonzero(simplex >= 0)[0]
         out = np.empty((xi.shape[0], self.values.shape[1]), dtype=self.values.dtype)
         out[...] = self.fill_value
         if inside.size == 0:
             return out
         rows = simplex[inside]
-        weights = barycentric(tri.transform[rows], xi[inside])
+        weights = weights[inside]
         flat = np.nonzero(np.isnan(weights[:, 0]))[0]
         if flat.size:
             weights[flat] = _weights_directly(tri.points[tri.simplices[rows[flat]]], xi[inside[flat]])

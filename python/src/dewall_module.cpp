@@ -37,6 +37,7 @@
 #include "dewall/kernel/dimension.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/locate.hpp"
+#include "convex_hull.hpp"
 
 namespace py = pybind11;
 
@@ -119,6 +120,9 @@ py::dict statistics_dict(const dewall::Statistics& s, double seconds) {
   return d;
 }
 
+/// One row of scipy's transform array; defined with barycentric_transforms below.
+void transform_row(const double* x, const std::uint32_t* index, std::size_t width, double rcond_limit, double* o);
+
 /// A triangulation of one dimension: simplices, and the neighbors once asked.
 template <int D>
 struct Cells {
@@ -162,12 +166,60 @@ class Triangulation {
       compute_neighbors(c);
       py::array_t<std::int32_t> out(q.shape(0));
       std::span<std::int32_t> result(out.mutable_data(), static_cast<std::size_t>(q.shape(0)));
-      py::gil_scoped_release release;
-      dewall::locate_all<Kernel<D>>({}, as_points<D>(points_),
-                                    std::span<const dewall::Simplex<D>>(c.simplices),
-                                    std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), as_points<D>(q),
-                                    result);
+      {
+        py::gil_scoped_release release;  // taken back before `out` is copied below
+        dewall::locate_all<Kernel<D>>({}, as_points<D>(points_),
+                                      std::span<const dewall::Simplex<D>>(c.simplices),
+                                      std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), as_points<D>(q),
+                                      result);
+      }
       return py::array(out);
+    }, cells_);
+  }
+
+  /// locate() and, in 2D and 3D, each query's barycentric coordinates in the simplex found,
+  /// from that simplex's row of scipy's transform (transform_row: the same numbers as
+  /// Delaunay.transform, without computing the rows no query needs): (simplices,
+  /// weights (q, D + 1)); rows of −1 and NaN transforms get NaN weights.
+  py::tuple locate_weights(py::handle queries, double rcond_limit) {
+    return std::visit([&](auto& c) -> py::tuple {
+      constexpr int D = std::decay_t<decltype(c)>::dimension;
+      if constexpr (D > 3) {
+        throw py::value_error("locate_weights: points of 2 or 3 dimensions");
+      } else {
+        const py::array q = checked(queries, float64, D, "xi");
+        compute_neighbors(c);
+        const auto count = static_cast<std::size_t>(q.shape(0));
+        py::array_t<std::int32_t> found(q.shape(0));
+        py::array_t<double> weights({q.shape(0), static_cast<py::ssize_t>(D + 1)});
+        std::span<std::int32_t> result(found.mutable_data(), count);
+        double* w = weights.mutable_data();
+        const auto* x = static_cast<const double*>(points_.data());
+        const auto* xi = static_cast<const double*>(q.data());
+        {
+          py::gil_scoped_release release;
+          dewall::locate_all<Kernel<D>>({}, as_points<D>(points_), std::span<const dewall::Simplex<D>>(c.simplices),
+                                        std::span<const std::array<std::int32_t, D + 1>>(c.neighbors),
+                                        as_points<D>(q), result);
+          for (std::size_t i = 0; i < count; ++i, w += D + 1, xi += D) {
+            if (result[i] < 0) {
+              for (int j = 0; j <= D; ++j) w[j] = NAN;
+              continue;
+            }
+            double t[(D + 1) * D];
+            transform_row(x, c.simplices[static_cast<std::size_t>(result[i])].data(), D, rcond_limit, t);
+            double total = 0;
+            for (int j = 0; j < D; ++j) {  // c = T⁻¹ (x − r), c_D = 1 − Σ c, as _delaunay.barycentric
+              double sum = 0;
+              for (int k = 0; k < D; ++k) sum += t[j * D + k] * (xi[k] - t[D * D + k]);
+              w[j] = sum;
+              total += sum;
+            }
+            w[D] = 1 - total;
+          }
+        }
+        return py::make_tuple(found, weights);
+      }
     }, cells_);
   }
 
@@ -297,10 +349,54 @@ std::unique_ptr<Triangulation> from_simplices(py::handle points_in, py::handle s
   });
 }
 
-/// scipy's transform array (Delaunay.transform) in 2D and 3D: the formulas of
-/// the Python fallback (_delaunay.barycentric_transforms; its docstring has
-/// the layout and scipy's NaN rule), in one pass instead of a dozen NumPy
-/// temporaries (10^5 points in 3D: most of build + neighbors + transform).
+/// One row of scipy's transform array (Delaunay.transform) in 2D and 3D: for the
+/// simplex with vertex indices `index` (width + 1 of them) of the points `x`,
+/// writes T⁻¹ (width × width) then r (width) to `o`; NaN throughout under
+/// scipy's rule. The formulas of the Python fallback
+/// (_delaunay.barycentric_transforms; its docstring has the layout and the rule).
+void transform_row(const double* x, const std::uint32_t* index, std::size_t width, double rcond_limit, double* o) {
+  const double* r = x + index[width] * width;
+  double e[3][3] = {};  // e[j]: column j of T, vertex j − r
+  for (std::size_t j = 0; j < width; ++j)
+    for (std::size_t k = 0; k < width; ++k) e[j][k] = x[index[j] * width + k] - r[k];
+  double inverse[3][3] = {}, det;
+  if (width == 2) {  // T = [[a, b], [c, f]], columns (a, c) and (b, f)
+    const double a = e[0][0], c = e[0][1], b = e[1][0], f = e[1][1];
+    det = a * f - b * c;
+    inverse[0][0] = f, inverse[0][1] = -b, inverse[1][0] = -c, inverse[1][1] = a;
+  } else {  // row i of the adjugate: the cross product of the other two columns
+    constexpr int other[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    for (int i = 0; i < 3; ++i) {
+      const double* u = e[other[i][0]];
+      const double* v = e[other[i][1]];
+      inverse[i][0] = u[1] * v[2] - u[2] * v[1];
+      inverse[i][1] = u[2] * v[0] - u[0] * v[2];
+      inverse[i][2] = u[0] * v[1] - u[1] * v[0];
+    }
+    det = e[0][0] * inverse[0][0] + e[0][1] * inverse[0][1] + e[0][2] * inverse[0][2];
+  }
+  // The reciprocal condition number in the 1-norm (largest column sum), as scipy's rule.
+  double norm = 0, inverse_norm = 0;
+  for (std::size_t j = 0; j < width; ++j) {
+    double column = 0, inverse_column = 0;
+    for (std::size_t k = 0; k < width; ++k) {
+      column += std::fabs(e[j][k]);
+      inverse[k][j] /= det;
+      inverse_column += std::fabs(inverse[k][j]);
+    }
+    norm = std::max(norm, column);
+    inverse_norm = std::max(inverse_norm, inverse_column);
+  }
+  const double rcond = 1 / (norm * inverse_norm);
+  const bool bad = !(std::fabs(det) > 0) || !(rcond >= rcond_limit);
+  for (std::size_t i = 0; i < width; ++i)
+    for (std::size_t k = 0; k < width; ++k) o[i * width + k] = bad ? NAN : inverse[i][k];
+  for (std::size_t k = 0; k < width; ++k) o[width * width + k] = bad ? NAN : r[k];
+}
+
+/// scipy's transform array (Delaunay.transform) in 2D and 3D, in one pass
+/// instead of a dozen NumPy temporaries (10^5 points in 3D: most of build +
+/// neighbors + transform).
 py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, double rcond_limit) {
   const py::array points = checked(points_in, float64, -1, "points");
   const long d = static_cast<long>(points.shape(1));
@@ -315,45 +411,7 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(d + 1), static_cast<py::ssize_t>(d)});
   double* o = out.mutable_data();
   const auto width = static_cast<std::size_t>(d);
-  for (std::size_t s = 0; s < count; ++s, index += d + 1, o += (d + 1) * d) {
-    const double* r = x + index[d] * width;
-    double e[3][3] = {};  // e[j]: column j of T, vertex j − r
-    for (std::size_t j = 0; j < width; ++j)
-      for (std::size_t k = 0; k < width; ++k) e[j][k] = x[index[j] * width + k] - r[k];
-    double inverse[3][3] = {}, det;
-    if (d == 2) {  // T = [[a, b], [c, f]], columns (a, c) and (b, f)
-      const double a = e[0][0], c = e[0][1], b = e[1][0], f = e[1][1];
-      det = a * f - b * c;
-      inverse[0][0] = f, inverse[0][1] = -b, inverse[1][0] = -c, inverse[1][1] = a;
-    } else {  // row i of the adjugate: the cross product of the other two columns
-      constexpr int other[3][2] = {{1, 2}, {2, 0}, {0, 1}};
-      for (int i = 0; i < 3; ++i) {
-        const double* u = e[other[i][0]];
-        const double* v = e[other[i][1]];
-        inverse[i][0] = u[1] * v[2] - u[2] * v[1];
-        inverse[i][1] = u[2] * v[0] - u[0] * v[2];
-        inverse[i][2] = u[0] * v[1] - u[1] * v[0];
-      }
-      det = e[0][0] * inverse[0][0] + e[0][1] * inverse[0][1] + e[0][2] * inverse[0][2];
-    }
-    // The reciprocal condition number in the 1-norm (largest column sum), as scipy's rule.
-    double norm = 0, inverse_norm = 0;
-    for (std::size_t j = 0; j < width; ++j) {
-      double column = 0, inverse_column = 0;
-      for (std::size_t k = 0; k < width; ++k) {
-        column += std::fabs(e[j][k]);
-        inverse[k][j] /= det;
-        inverse_column += std::fabs(inverse[k][j]);
-      }
-      norm = std::max(norm, column);
-      inverse_norm = std::max(inverse_norm, inverse_column);
-    }
-    const double rcond = 1 / (norm * inverse_norm);
-    const bool bad = !(std::fabs(det) > 0) || !(rcond >= rcond_limit);
-    for (std::size_t i = 0; i < width; ++i)
-      for (std::size_t k = 0; k < width; ++k) o[i * width + k] = bad ? NAN : inverse[i][k];
-    for (std::size_t k = 0; k < width; ++k) o[width * width + k] = bad ? NAN : r[k];
-  }
+  for (std::size_t s = 0; s < count; ++s, index += d + 1, o += (d + 1) * d) transform_row(x, index, width, rcond_limit, o);
   return std::move(out);
 }
 
@@ -398,6 +456,26 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
     }
   });
   return out;
+}
+
+/// convex_hull(): (facets, neighbors, below, flat) as int32 arrays and a bool, or None when
+/// convex_hull.hpp declines (non-finite, too few or nearly flat points: the caller falls back).
+py::object convex_hull(py::handle points_in) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto dim) -> py::object {
+    constexpr int D = dim();
+    if (points.shape(0) > static_cast<py::ssize_t>(max_index)) throw py::value_error("too many points");
+    std::optional<dewall_python::Convex_hull<D>> hull;
+    {
+      py::gil_scoped_release release;
+      hull = dewall_python::convex_hull<D>(as_points<D>(points));
+    }
+    if (!hull) return py::none();
+    const auto m = static_cast<py::ssize_t>(hull->facets.size());
+    return py::make_tuple(adopt<std::int32_t>(std::move(hull->facets), {m, D}),
+                          adopt<std::int32_t>(std::move(hull->neighbors), {m, D}),
+                          adopt<std::int32_t>(std::move(hull->below), {m}), hull->flat);
+  });
 }
 
 py::dict violation_dict(const dewall::certify::Violation& v) {
@@ -485,6 +563,7 @@ PYBIND11_MODULE(_dewall, m) {
       .def("simplices", [](py::object self) { return self.cast<Triangulation&>().simplices(self); })
       .def("neighbors", [](py::object self) { return self.cast<Triangulation&>().neighbors(self); })
       .def("locate", &Triangulation::locate, py::arg("xi"))
+      .def("locate_weights", &Triangulation::locate_weights, py::arg("xi"), py::arg("rcond_limit"))
       .def("first_occurrences", &Triangulation::first_occurrences)
       .def("cospherical_neighbours", &Triangulation::cospherical_neighbours);
 
@@ -493,6 +572,7 @@ PYBIND11_MODULE(_dewall, m) {
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
   m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"));
+  m.def("convex_hull", &convex_hull, py::arg("points"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

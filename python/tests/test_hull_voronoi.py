@@ -77,6 +77,43 @@ def test_voronoi_equals_scipy(d, n, furthest, rng):
 # ---- ported from scipy's test_qhull.py ---------------------------------------------------------
 
 
+def _hull_via_delaunay(points):
+    """ConvexHull's other route: the exact Delaunay triangulation's boundary (4-D+ flat hulls,
+    nearly flat input), used here as the reference for Quickhull."""
+    hull = dewall.ConvexHull.__new__(dewall.ConvexHull)
+    hull.points, hull.ndim, hull.npoints = points, points.shape[1], points.shape[0]
+    hull._from_delaunay(dewall.Delaunay(points))
+    return hull
+
+
+@pytest.mark.parametrize("d", [2, 3, 4])
+def test_quickhull_equals_the_delaunay_boundary_on_degenerate_input(d, rng):
+    """Lattices with duplicates, rounded sphere points, a grid in random order: the same extreme
+    vertices, volume and area as the Delaunay route (in 4-D: its extreme points, a subset), a
+    closed facet graph, every point inside every facet's plane."""
+    for trial in range(12):
+        n = int(rng.integers(d + 2, 50))
+        kind = trial % 3
+        if kind == 0:
+            points = rng.integers(0, 3, (n, d)).astype(float)
+        elif kind == 1:
+            q = rng.normal(size=(n, d))
+            points = np.round(8 * q / np.linalg.norm(q, axis=1)[:, None])
+        else:
+            points = np.array(np.meshgrid(*[range(3)] * d)).reshape(d, -1).T.astype(float)
+            points = points[rng.permutation(len(points))]
+        ours, reference = dewall.ConvexHull(points), _hull_via_delaunay(points)
+        if d <= 3:
+            assert set(ours.vertices) == set(reference.vertices)
+        else:
+            assert set(ours.vertices) <= set(reference.vertices)
+        assert ours.volume == pytest.approx(reference.volume, rel=1e-9)
+        assert ours.area == pytest.approx(reference.area, rel=1e-9)
+        assert (ours.neighbors >= 0).all()
+        assert all(i in ours.neighbors[j] for i in range(ours.nsimplex) for j in ours.neighbors[i])
+        assert (ours.equations[:, :-1] @ points.T + ours.equations[:, -1:] <= 1e-12).all()
+
+
 def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
     for cls in (dewall.ConvexHull, dewall.Voronoi):
         with pytest.raises(ValueError):
@@ -224,3 +261,27 @@ def test_3d_ridges_in_cyclic_order(rng):
         turns = [np.dot(np.cross(finite[(k + 1) % m] - finite[k], finite[(k + 2) % m] - finite[(k + 1) % m]), axis)
                  for k in range(m - (2 if -1 in ridge else 0))]
         assert (np.array(turns) > 0).all() or (np.array(turns) < 0).all()
+
+
+def _good_facets(hull):
+    return {tuple(sorted(f)) for f, good in zip(hull.simplices.tolist(), hull.good) if good}
+
+
+@pytest.mark.parametrize("option", ["QG4", "QG-4"])
+def test_good_facets_as_scipy(option, rng):  # TestConvexHull.test_good2d*, test_good3d, compared as sets
+    square = np.array([[0.2, 0.2], [0.2, 0.4], [0.4, 0.4], [0.4, 0.2], [0.3, 0.6]])
+    for extra in ([[0.3, 0.7]], [[0.3, -0.7]], [[0.3, 0.41]], [[0.5, 0.6], [0.6, 0.6]], [[0.3, 0.6 + 1e-16]]):
+        ours = dewall.ConvexHull(square, incremental=True, qhull_options=option)
+        theirs = ss.ConvexHull(square, incremental=True, qhull_options=option)
+        ours.add_points(np.array(extra))
+        theirs.add_points(np.array(extra))
+        assert _good_facets(ours) == _good_facets(theirs)
+        assert ours.good.dtype == bool and ours.nsimplex == theirs.nsimplex
+    for d in (2, 3):
+        points = rng.random((25, d))
+        options = option.replace("4", "7")
+        ours, theirs = dewall.ConvexHull(points, qhull_options=options), ss.ConvexHull(points, qhull_options=options)
+        assert _good_facets(ours) == _good_facets(theirs) and 7 not in ours.vertices
+    assert dewall.ConvexHull(square).good is None
+    with pytest.raises(dewall.InvalidOption):
+        dewall.ConvexHull(square, qhull_options="QG5")

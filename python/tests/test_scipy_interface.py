@@ -402,9 +402,40 @@ def test_furthest_site_ties():
     tri = dewall.Delaunay(pyramid, furthest_site=True)
     assert set(np.unique(tri.simplices)) == {0, 1, 2, 3, 4} and tri.nsimplex == 2
     assert (tri.plane_distance(pyramid) <= 1e-12).all()
-    # 3-D without a triangular face (a cube): refused, not guessed
+    # 3-D without a triangular face (a cube, a 3 x 3 x 3 grid: started from a hull edge)
     import itertools
 
-    cube = np.array(list(itertools.product([0, 1], repeat=3)), dtype=float)
-    with pytest.raises(NotImplementedError, match="no triangular face"):
-        dewall.Delaunay(cube, furthest_site=True)
+    for side in ([0, 1], [0, 1, 2]):
+        cube = np.array(list(itertools.product(side, repeat=3)), dtype=float)
+        tri = dewall.Delaunay(cube, furthest_site=True)
+        volume = np.abs(np.linalg.det(cube[tri.simplices[:, 1:]] - cube[tri.simplices[:, :1]])).sum() / 6
+        assert tri.nsimplex == 6 and volume == pytest.approx(side[-1] ** 3, rel=1e-12)
+        assert np.unique(tri.simplices).size == 8 and (tri.plane_distance(cube) <= 1e-12).all()
+    # 4-D with a flat hull facet (a tesseract): refused, not guessed
+    with pytest.raises(NotImplementedError, match="4-D and up"):
+        dewall.Delaunay(np.array(list(itertools.product([0, 1], repeat=4)), dtype=float), furthest_site=True)
+
+
+@pytest.mark.parametrize("d", [2, 3])
+def test_furthest_site_routes_agree(d, rng):
+    """furthest_site from the Quickhull hull equals it from the Delaunay triangulation's boundary
+    (the perturbed furthest-site triangulation is unique) on lattices and rounded sphere points."""
+    from dewall._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
+    from dewall._delaunay import _hull_facets
+    from dewall._furthest_site import furthest_site_simplices
+
+    for trial in range(8):
+        if trial % 2:
+            points = rng.integers(0, 3, (int(rng.integers(8, 30)), d)).astype(float)
+        else:
+            q = rng.normal(size=(30, d))
+            points = np.round(5 * q / np.linalg.norm(q, axis=1)[:, None])
+        tri = dewall.Delaunay(points)
+        if d == 2:
+            hull = extreme_hull_edges_2d(points, tri.simplices, tri.neighbors)
+            whole = np.ones(len(hull), dtype=bool)
+        else:
+            hull, _, whole = extreme_facets_3d(points, tri.simplices, tri.neighbors,
+                                               _hull_facets(tri.simplices, tri.neighbors))
+        assert simplex_set(furthest_site_simplices(points, hull, whole)) == simplex_set(
+            furthest_site_simplices(points, *quickhull_facets(points)))

@@ -1,0 +1,82 @@
+#!/usr/bin/python3
+"""dewall.ConvexHull and dewall.interpolate.LinearNDInterpolator against scipy's, for the README.
+
+    PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py hull
+    PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py \
+        interpolate --dims 2 --sizes 1e6
+
+hull: ConvexHull of n uniform points in the unit square / cube (seed 1), scipy's then
+dewall's, each timed around the constructor; the facets compared as sets.
+interpolate: LinearNDInterpolator(points, values) built and then evaluated on a regular
+grid of about n queries over the unit box (row-major, the usual griddata layout; random
+queries make scipy's walk far slower); values compared where both are finite.
+Seconds on a shared machine are noise: the ratio within one run is the figure.
+"""
+
+import argparse
+import time
+
+import numpy as np
+import scipy.interpolate
+import scipy.spatial
+
+import dewall
+import dewall.interpolate
+
+
+def timed(function):
+    start = time.perf_counter()
+    result = function()
+    return time.perf_counter() - start, result
+
+
+def facet_set(simplices):
+    return {tuple(sorted(row)) for row in simplices.tolist()}
+
+
+def hull(dims, sizes):
+    for d in dims:
+        for n in sizes:
+            points = np.random.default_rng(1).random((n, d))
+            theirs_seconds, theirs = timed(lambda: scipy.spatial.ConvexHull(points))
+            ours_seconds, ours = timed(lambda: dewall.ConvexHull(points))
+            same = facet_set(ours.simplices) == facet_set(theirs.simplices)
+            print(f"ConvexHull {d}-D n={n:.0e}: dewall {ours_seconds:.3f} s, scipy {theirs_seconds:.3f} s, "
+                  f"ratio {ours_seconds / theirs_seconds:.2f}, same facets: {same}", flush=True)
+
+
+def interpolate(dims, sizes):
+    for d in dims:
+        for n in sizes:
+            rng = np.random.default_rng(1)
+            points = rng.random((n, d))
+            values = np.sin(6 * points[:, 0]) * points[:, 1] + points[:, -1]
+            k = round(n ** (1 / d))
+            axes = np.meshgrid(*[np.linspace(0, 1, k)] * d, indexing="ij")
+            queries = np.stack([a.ravel() for a in axes], axis=1)
+            results, seconds = {}, {}
+            for name, module in (("dewall", dewall.interpolate), ("scipy", scipy.interpolate)):
+                build, f = timed(lambda: module.LinearNDInterpolator(points, values))
+                evaluate, results[name] = timed(lambda: f(queries))
+                seconds[name] = build + evaluate
+                print(f"LinearNDInterpolator {d}-D n={n:.0e}, {len(queries)} queries, {name}: build {build:.2f} s, "
+                      f"evaluate {evaluate:.2f} s, total {seconds[name]:.2f} s", flush=True)
+            ours, theirs = results["dewall"], results["scipy"]
+            both = np.isfinite(ours) & np.isfinite(theirs)
+            print(f"  ratio {seconds['dewall'] / seconds['scipy']:.2f}; NaN: dewall {np.isnan(ours).sum()}, "
+                  f"scipy {np.isnan(theirs).sum()}; largest difference {np.abs(ours[both] - theirs[both]).max():.1e}",
+                  flush=True)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("what", choices=("hull", "interpolate"))
+    parser.add_argument("--dims", type=int, nargs="+", default=[2, 3])
+    parser.add_argument("--sizes", type=float, nargs="+", default=[1e5, 1e6])
+    args = parser.parse_args()
+    sizes = [int(s) for s in args.sizes]
+    (hull if args.what == "hull" else interpolate)(args.dims, sizes)
+
+
+if __name__ == "__main__":
+    main()
