@@ -42,6 +42,7 @@
 
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
@@ -75,7 +76,8 @@ const char* const usage_text =
     "            merges them, and writes the file alone\n"
     "  --per-rank  each rank writes its own simplices (global point indices) to its own\n"
     "            file, OUT with .r<rank> before the extension (out.r3.dwsx)\n"
-    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds, peak memory)\n"
+    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds, CPU\n"
+    "            seconds, peak memory)\n"
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
     "            rank's block (default 1; 0: none); only the time changes\n";
 
@@ -249,12 +251,10 @@ void append_rows(std::string& out, std::span<const dewall::mpi::Global_simplex<D
   const auto put = [&](std::uint64_t x) { out.append(number, std::to_chars(number, number + sizeof number, x).ptr); };
   for (const auto& s : batch) {
     if (f == Format::binary) {
-      for (const std::uint64_t v : s) {
-        const auto x = static_cast<std::uint32_t>(v);
-        const char b[4] = {static_cast<char>(x), static_cast<char>(x >> 8), static_cast<char>(x >> 16),
-                           static_cast<char>(x >> 24)};
-        out.append(b, 4);
-      }
+      char b[4 * (D + 1)];
+      for (int i = 0; i <= D; ++i)
+        for (int k = 0; k < 4; ++k) b[4 * i + k] = static_cast<char>(s[i] >> (8 * k));
+      out.append(b, sizeof b);
       continue;
     }
     if (f == Format::ele) {
@@ -353,21 +353,23 @@ void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double t
                                        st.build_seconds,                     st.verify_seconds,
                                        st.halo_seconds,                      st.finish_seconds,
                                        write,                                total,
-                                       static_cast<double>(usage.ru_maxrss) / 1024.0, 0.0};
+                                       static_cast<double>(usage.ru_maxrss) / 1024.0,
+                                       static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                                           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec)};
   std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
   MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
              MPI_DOUBLE, 0, comm);
   if (rank != 0) return;
   std::fprintf(stderr,
                "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds: decompose"
-               "  build verify   halo finish  write |  total | peak MB\n");
+               "  build verify   halo finish  write |  total    cpu | peak MB\n");
   for (int q = 0; q < size; ++q) {
     const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
     std::fprintf(stderr,
                  "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
-                 "| %6.3f | %7.0f\n",
+                 "| %6.3f %6.3f | %7.0f\n",
                  q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[7], e[8], e[9],
-                 e[10], e[11], e[12], e[13], e[14]);
+                 e[10], e[11], e[12], e[13], e[15], e[14]);
   }
 }
 
@@ -572,6 +574,9 @@ int run(int argc, char** argv, int rank, int size) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before MPI_Init (nothing is connected yet): huge pages for the heap, as
+  // `dewall` has them (the engine chases pointers through its cells).
+  dewall::io::restart_with_huge_pages(argv);
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
