@@ -504,6 +504,13 @@ class Rank_triangulation {
     // Step 5, after the last collective call: the owned cells, counted, then
     // handed over in batches, in slot order (the same on every run with R ranks).
     const double t3 = MPI_Wtime();
+    // What answered and tracked questions is done with: freed before the
+    // keys and the sink's buffers are made (the rank's memory peak).
+    index_ = Block_index<D>();
+    decltype(sent_)().swap(sent_);
+    decltype(verified_)().swap(verified_);
+    decltype(pending_)().swap(pending_);
+    decltype(points_)().swap(points_);
     // By vertex id (the engine's insertion order, which its cells follow):
     // 2·global index + 1 for a halo point, so that the smallest key of a
     // cell is its smallest global index, and its low bit says whether that

@@ -280,7 +280,7 @@ std::string mpi_error_text(int code) {
 /// temporary that rank 0's io::Output_file created (rank 0 renames it into
 /// place once every rank has written and closed it). Each rank's simplices
 /// go at the offset the ranks before it fill (MPI_Exscan of the counts):
-/// .dwsx streamed as the simplices come (16 MiB at a time), the text formats
+/// .dwsx streamed as the simplices come (4 MiB at a time), the text formats
 /// formatted in memory first (their lengths vary). Write failures are
 /// recorded, not thrown (the sink runs inside dewall::mpi; the ranks agree
 /// afterwards).
@@ -298,13 +298,14 @@ class Collective_writer {
     if (rank_ == 0) before = 0;  // MPI_Exscan leaves rank 0's undefined
     MPI_Allreduce(&count, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
     row_ = before;
-    if (rank_ == 0) buffer_ = header_of(format_, D, total);
+    if (format_ == Format::binary) buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
+    if (rank_ == 0) buffer_ += header_of(format_, D, total);
     if (format_ == Format::binary)
       offset_ = (rank_ == 0 ? 0 : header_of(format_, D, 0).size()) + before * (D + 1) * 4;
   }
   void take(std::span<const dewall::mpi::Global_simplex<D>> batch) {
     append_rows<D>(buffer_, batch, format_, row_);
-    if (format_ == Format::binary && buffer_.size() >= (std::size_t{1} << 24)) flush();
+    if (format_ == Format::binary && buffer_.size() >= flush_bytes) flush();
   }
   /// Collective: writes what is left (the text formats: everything).
   void finish() {
@@ -319,6 +320,7 @@ class Collective_writer {
   const std::string& error() const { return error_; }
 
  private:
+  static constexpr std::size_t flush_bytes = std::size_t{1} << 22;  // .dwsx: written 4 MiB at a time
   void flush() {
     for (std::size_t at = 0; at < buffer_.size() && error_.empty();) {
       const int n = static_cast<int>(std::min<std::size_t>(buffer_.size() - at, std::size_t{1} << 30));
