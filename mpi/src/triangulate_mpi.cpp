@@ -451,7 +451,9 @@ class Rank_triangulation {
 
   /// Step 4 and 5.
   void run(const Simplex_sink<D>& sink) {
+    const double t_index = MPI_Wtime();
     index_.build(points_, nb_);
+    stats_.index_seconds = MPI_Wtime() - t_index;
     std::vector<std::vector<Query<D>>> queries(c_.size);
     run_collectively(c_.comm, [&] { seed_queries(queries); });
     bool verifying = false;

@@ -148,6 +148,7 @@ struct Share {
   int dimension = 0;
   std::uint64_t count = 0, first = 0;
   std::vector<double> coordinates;
+  double seconds = 0;  // reading it
 };
 
 Share read_share(const std::string& name, int rank, int size) {
@@ -344,11 +345,11 @@ class Collective_writer {
 };
 
 /// The statistics line of every rank, printed by rank 0.
-void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double total, double write, int rank,
-                      int size) {
+void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double read, double total, double write,
+                      int rank, int size) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  const std::array<double, 16> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
+  const std::array<double, 18> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
                                        static_cast<double>(st.halo_points),  static_cast<double>(st.rounds),
                                        static_cast<double>(st.builds),       static_cast<double>(st.queries_sent),
                                        static_cast<double>(st.simplices),    st.decompose_seconds,
@@ -357,20 +358,21 @@ void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double t
                                        write,                                total,
                                        static_cast<double>(usage.ru_maxrss) / 1024.0,
                                        static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
-                                           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec)};
+                                           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec),
+                                       st.index_seconds, read};
   std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
   MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
              MPI_DOUBLE, 0, comm);
   if (rank != 0) return;
   std::fprintf(stderr,
-               "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds: decompose"
-               "  build verify   halo finish  write |  total    cpu | peak MB\n");
+               "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds:   read decompose"
+               "  index  build verify   halo finish  write |  total    cpu | peak MB\n");
   for (int q = 0; q < size; ++q) {
     const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
     std::fprintf(stderr,
-                 "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
+                 "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %6.3f %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
                  "| %6.3f %6.3f | %7.0f\n",
-                 q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[7], e[8], e[9],
+                 q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[17], e[7], e[16], e[8], e[9],
                  e[10], e[11], e[12], e[13], e[15], e[14]);
   }
 }
@@ -539,7 +541,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       write_seconds = MPI_Wtime() - t1;
     }
   }
-  if (args.stats) print_statistics(comm, st, MPI_Wtime() - t0, write_seconds, rank, size);
+  if (args.stats) print_statistics(comm, st, share.seconds, MPI_Wtime() - t0, write_seconds, rank, size);
   return 0;
 }
 
@@ -556,7 +558,9 @@ int run(int argc, char** argv, int rank, int size) {
   }
   try {
     Share share;
+    const double t = MPI_Wtime();
     step(MPI_COMM_WORLD, [&] { share = read_share(args.input, rank, size); });
+    share.seconds = MPI_Wtime() - t;
     switch (share.dimension) {
       case 2: return triangulate<2>(MPI_COMM_WORLD, args, std::move(share), rank, size);
       case 3: return triangulate<3>(MPI_COMM_WORLD, args, std::move(share), rank, size);

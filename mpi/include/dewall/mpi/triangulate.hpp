@@ -52,6 +52,7 @@ struct Statistics {
   std::size_t simplices = 0;       ///< simplices this rank owns
   double decompose_seconds = 0;    ///< cuts and point exchange
   double build_seconds = 0;        ///< triangulations
+  double index_seconds = 0;        ///< the kd-tree over the block's points (for answering questions)
   double halo_seconds = 0;         ///< answers and the exchanges of questions and answers
   double verify_seconds = 0;       ///< finding the cells to ask about, and the questions
   double finish_seconds = 0;       ///< the owned simplices taken out and handed to the sink
