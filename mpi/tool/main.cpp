@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
 #include <memory>
 #include <span>
 #include <sstream>
@@ -299,10 +300,14 @@ class Collective_writer {
     if (rank_ == 0) before = 0;  // MPI_Exscan leaves rank 0's undefined
     MPI_Allreduce(&count, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
     row_ = before;
-    if (format_ == Format::binary) buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
-    if (rank_ == 0) buffer_ += header_of(format_, D, total);
-    if (format_ == Format::binary)
-      offset_ = (rank_ == 0 ? 0 : header_of(format_, D, 0).size()) + before * (D + 1) * 4;
+    try {  // this rank's alone, after the collective calls: recorded
+      if (format_ == Format::binary) buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
+      if (rank_ == 0) buffer_ += header_of(format_, D, total);
+      if (format_ == Format::binary)
+        offset_ = (rank_ == 0 ? 0 : header_of(format_, D, 0).size()) + before * (D + 1) * 4;
+    } catch (const std::exception& e) {
+      error_ = name_ + ": " + e.what();
+    }
   }
   void take(std::span<const dewall::mpi::Global_simplex<D>> batch) {
     append_rows<D>(buffer_, batch, format_, row_);
@@ -377,6 +382,19 @@ void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double r
   }
 }
 
+/// Runs f, keeping its exception (the first) in `failed` instead of throwing:
+/// a sink runs inside dewall::mpi, and a rank leaving it early would leave the
+/// others waiting in the next collective call.
+template <class F>
+void guarded(std::exception_ptr& failed, F&& f) {
+  if (failed) return;
+  try {
+    f();
+  } catch (...) {
+    failed = std::current_exception();
+  }
+}
+
 /// OUT with ".r<rank>" before its extension (the per-rank files).
 std::string per_rank_name(const std::string& out, int rank) {
   const std::size_t slash = out.find_last_of('/');
@@ -426,16 +444,20 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
         file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
       }
     } sink{*file, text, row, format};
+    std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
     dewall::mpi::Simplex_sink<D> s;
-    s.start = [&](std::uint64_t n) { sink.start(n); };
-    s.take = [&](std::span<const S> b) { sink.take(b); };
+    s.start = [&](std::uint64_t n) { guarded(failed, [&] { sink.start(n); }); };
+    s.take = [&](std::span<const S> b) { guarded(failed, [&] { sink.take(b); }); };
     try {
       st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
     } catch (const dewall::Invalid_input& e) {
       return report_invalid(e);
     }
     const double t1 = MPI_Wtime();
-    step(comm, [&] { file->check(); });
+    step(comm, [&] {
+      if (failed) std::rethrow_exception(failed);
+      file->check();
+    });
     step(comm, [&] { file->commit(); });
     write_seconds = MPI_Wtime() - t1;
   } else {
@@ -463,9 +485,10 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
         if (rc != MPI_SUCCESS) throw File_error(args.output + ": cannot open its temporary for MPI-IO: " + mpi_error_text(rc));
       });
       Collective_writer<D> writer(comm, fh, format, args.output);
+      std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
       dewall::mpi::Simplex_sink<D> s;
-      s.start = [&](std::uint64_t n) { writer.start(n); };
-      s.take = [&](std::span<const S> b) { writer.take(b); };
+      s.start = [&](std::uint64_t n) { writer.start(n); };  // collective: must not be skipped
+      s.take = [&](std::span<const S> b) { guarded(failed, [&] { writer.take(b); }); };
       try {
         st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
       } catch (...) {
@@ -480,6 +503,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       writer.finish();
       const int closed = MPI_File_close(&fh);
       step(comm, [&] {
+        if (failed) std::rethrow_exception(failed);
         if (!writer.error().empty()) throw File_error(writer.error());
         if (closed != MPI_SUCCESS) throw File_error(args.output + ": write error: " + mpi_error_text(closed));
       });

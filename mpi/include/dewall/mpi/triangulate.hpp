@@ -10,8 +10,9 @@
 //     asks the ranks whose blocks a cell's ball may reach (a box proven to
 //     hold the closed ball) for their points there, in rounds, until no rank
 //     receives a new point;
-//  3. each rank then keeps the cells whose smallest global vertex index lies
-//     in its block: each simplex of the triangulation on exactly one rank.
+//  3. each rank then hands its sink the cells whose smallest global vertex
+//     index lies in its block: each simplex of the triangulation on exactly
+//     one rank.
 #pragma once
 
 #include <mpi.h>
@@ -64,7 +65,10 @@ struct Statistics {
 /// function is that rank's alone (no other rank waits for it).
 template <int D>
 struct Simplex_sink {
-  /// Optional: called once, first, with how many simplices this rank will hand over.
+  /// Optional: called once, first, with how many simplices this rank will
+  /// hand over — on every rank, 0 included, after dewall::mpi's last
+  /// collective call, so a sink may make collective calls of its own here
+  /// (dewall-mpi's MPI_Exscan of the file offsets).
   std::function<void(std::uint64_t)> start;
   /// The owned simplices, a batch at a time (batches of a few thousand).
   std::function<void(std::span<const Global_simplex<D>>)> take;
