@@ -389,6 +389,8 @@ bool Output_file::patch(std::size_t offset, const void* data, std::size_t size) 
 }
 bool Output_file::direct() const { return impl_->direct; }
 
+const std::string& Output_file::temporary_path() const { return impl_->temporary; }
+
 void Output_file::check() const {
   const auto& m = *impl_;
   if (m.buffer.error() != 0) throw failure(m.name, "write error", m.buffer.error());

@@ -89,6 +89,7 @@
 #include "dewall/detail/input.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
+#include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/mpi/collective_error.hpp"
 
@@ -118,15 +119,16 @@ struct Record {
   Coords<D> x;
 };
 
-/// Collective: sends out[q] to rank q; returns what each rank sent here,
-/// concatenated in rank order. T is trivially copyable.
+/// Collective: sends send[displacement q … + count[q]) to rank q (the parts
+/// in rank order); returns what each rank sent here, concatenated in rank
+/// order. T is trivially copyable. No copy beyond MPI's own.
 template <class T>
-std::vector<T> alltoall(const Comm& c, const std::vector<std::vector<T>>& out) {
+std::vector<T> alltoall(const Comm& c, const std::vector<T>& send, const std::vector<std::uint64_t>& count) {
   std::vector<int> send_counts(c.size), recv_counts(c.size), send_displs(c.size), recv_displs(c.size);
   std::uint64_t send_total = 0;
   bool too_big = false;
   for (int q = 0; q < c.size; ++q) {
-    const std::uint64_t bytes = out[q].size() * sizeof(T);
+    const std::uint64_t bytes = count[q] * sizeof(T);
     too_big |= bytes > INT_MAX;
     send_counts[q] = static_cast<int>(std::min<std::uint64_t>(bytes, INT_MAX));
     send_total += bytes;
@@ -140,22 +142,30 @@ std::vector<T> alltoall(const Comm& c, const std::vector<std::vector<T>>& out) {
   MPI_Allreduce(&any_too_big, &flag, 1, MPI_INT, MPI_MAX, c.comm);
   if (flag)  // every rank throws alike
     throw std::runtime_error("dewall-mpi: one exchange needs more than 2 GiB per rank (MPI int counts); use more ranks");
-  std::vector<unsigned char> send(send_total);
   for (int q = 0, at = 0; q < c.size; ++q) {
     send_displs[q] = at;
-    if (!out[q].empty()) std::memcpy(send.data() + at, out[q].data(), static_cast<std::size_t>(send_counts[q]));
     at += send_counts[q];
   }
   for (int q = 0, at = 0; q < c.size; ++q) {
     recv_displs[q] = at;
     at += recv_counts[q];
   }
-  std::vector<unsigned char> recv(recv_total);
-  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, recv.data(), recv_counts.data(),
-                recv_displs.data(), MPI_BYTE, c.comm);
   std::vector<T> result(recv_total / sizeof(T));
-  if (!result.empty()) std::memcpy(result.data(), recv.data(), recv_total);
+  MPI_Alltoallv(send.data(), send_counts.data(), send_displs.data(), MPI_BYTE, result.data(), recv_counts.data(),
+                recv_displs.data(), MPI_BYTE, c.comm);
   return result;
+}
+
+/// As above, out[q] to rank q (the small exchanges of the halo rounds).
+template <class T>
+std::vector<T> alltoall(const Comm& c, const std::vector<std::vector<T>>& out) {
+  std::vector<T> send;
+  std::vector<std::uint64_t> count(c.size);
+  for (int q = 0; q < c.size; ++q) {
+    send.insert(send.end(), out[q].begin(), out[q].end());
+    count[q] = out[q].size();
+  }
+  return alltoall(c, send, count);
 }
 
 /// The doubles' order as unsigned integers (−0 and +0 one key; no NaN).
@@ -393,6 +403,17 @@ class Block_index {
   std::vector<Node> nodes_;
 };
 
+/// About how many cells the triangulation of n points in E^D has, to reserve
+/// the engine's arrays in 2D and 3D (the expected count per point for
+/// uniform points, 2 and 6.77, rounded up: too much costs address space
+/// only). Above 3D the count per point varies too much with the input (32
+/// to 1000 and more for uniform points) to reserve: the arrays grow.
+template <int D>
+std::size_t estimated_cells(std::size_t n) {
+  if constexpr (D > 3) return 0;
+  return static_cast<std::size_t>((D == 2 ? 2.05 : 6.9) * static_cast<double>(n)) + 64;
+}
+
 /// The cells already verified, by their sorted global vertex indices (a hull
 /// facet: its D indices and the largest value for the infinite vertex).
 template <int D>
@@ -429,8 +450,10 @@ class Rank_triangulation {
   }
 
   /// Step 4 and 5.
-  std::vector<Global_simplex<D>> run() {
+  void run(const Simplex_sink<D>& sink) {
+    const double t_index = MPI_Wtime();
     index_.build(points_, nb_);
+    stats_.index_seconds = MPI_Wtime() - t_index;
     std::vector<std::vector<Query<D>>> queries(c_.size);
     run_collectively(c_.comm, [&] { seed_queries(queries); });
     bool verifying = false;
@@ -457,6 +480,7 @@ class Rank_triangulation {
               [&](std::size_t k) { return in_dt_ + k; });
         } else {
           dt = detail::Incremental_delaunay<D>();
+          dt.reserve(estimated_cells<D>(points_.size() + points_.size() / 8));
           built = dt.build(points_.size(), coords, [](std::size_t k) { return k; }, &all_blocks_);
         }
         ++stats_.builds;
@@ -479,21 +503,43 @@ class Rank_triangulation {
         stats_.verify_seconds += MPI_Wtime() - t2;
       });
     }
+    // Step 5, after the last collective call: the owned cells, counted, then
+    // handed over in batches, in slot order (the same on every run with R ranks).
     const double t3 = MPI_Wtime();
-    std::vector<Global_simplex<D>> owned;
-    if (nb_ == 0) return owned;
-    DEWALL_ASSERT(spanning_);
-    owned.reserve(dt.finite_cells() * nb_ / std::max<std::size_t>(1, in_dt_) + 16);
-    for (std::size_t c = 0; c < dt.slots(); ++c) {
-      if (dt.is_free(c) || dt.is_infinite(c)) continue;
+    // What answered and tracked questions is done with: freed before the
+    // keys and the sink's buffers are made (the rank's memory peak).
+    index_ = Block_index<D>();
+    decltype(sent_)().swap(sent_);
+    decltype(verified_)().swap(verified_);
+    decltype(pending_)().swap(pending_);
+    decltype(points_)().swap(points_);
+    // By vertex id (the engine's insertion order, which its cells follow):
+    // 2·global index + 1 for a halo point, so that the smallest key of a
+    // cell is its smallest global index, and its low bit says whether that
+    // vertex lies in another block.
+    std::vector<std::uint64_t> key(nb_ > 0 ? dt.vertices() : 0);
+    for (std::size_t v = 0; v < key.size(); ++v) {
+      const Index local = dt.input_index(static_cast<Index>(v));
+      key[v] = gid_[local] << 1 | (local < nb_ ? 0 : 1);
+    }
+    const auto owned = [&](std::size_t c) {
+      if (dt.is_free(c) || dt.is_infinite(c)) return false;
+      std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
+      for (const Index v : dt.cell(c)) smallest = std::min(smallest, key[v]);
+      return (smallest & 1) == 0;  // owned by the block of its smallest vertex
+    };
+    std::uint64_t count = 0;
+    if (nb_ > 0)
+      for (std::size_t c = 0; c < dt.slots(); ++c) count += owned(c) ? 1 : 0;
+    if (sink.start) sink.start(count);
+    constexpr std::size_t batch_size = 4096;
+    std::vector<Global_simplex<D>> batch;
+    batch.reserve(batch_size);
+    for (std::size_t c = 0; c < dt.slots() && nb_ > 0; ++c) {
+      if (!owned(c)) continue;
       const auto& cell = dt.cell(c);
       Global_simplex<D> s;
-      int smallest = 0;
-      for (int i = 0; i <= D; ++i) {
-        s[i] = gid_[dt.input_index(cell[i])];
-        if (s[i] < s[smallest]) smallest = i;
-      }
-      if (dt.input_index(cell[smallest]) >= nb_) continue;  // owned by the block of its smallest vertex
+      for (int i = 0; i <= D; ++i) s[i] = key[cell[i]] >> 1;
       // Canonical form: the indices sorted, then the last two swapped when the
       // sort was an odd permutation (the orientation is kept).
       bool odd = false;
@@ -501,11 +547,15 @@ class Rank_triangulation {
         for (int j = i + 1; j <= D; ++j) odd ^= s[j] < s[i];
       std::sort(s.begin(), s.end());
       if (odd) std::swap(s[D - 1], s[D]);
-      owned.push_back(s);
+      batch.push_back(s);
+      if (batch.size() == batch_size) {
+        sink.take(batch);
+        batch.clear();
+      }
     }
-    std::sort(owned.begin(), owned.end());
+    if (!batch.empty()) sink.take(batch);
+    stats_.simplices = count;
     stats_.finish_seconds = MPI_Wtime() - t3;
-    return owned;
   }
 
  private:
@@ -774,24 +824,26 @@ class Rank_triangulation {
   detail::Box<D> all_blocks_;                 // the box of every block
 };
 
-/// Step 3: the block's distinct points (smallest global index of each), by global index.
+/// Step 3: the block's distinct points (of equal points, the smallest global
+/// index), in global index order. The records arrive in rank order, each
+/// rank's in its order: sorted by global index already when the ranks'
+/// offsets grow with the rank (the tool's shares); then duplicates are found
+/// by the hash table the one-machine path uses (kernel::first_occurrences,
+/// O(n), no sort).
 template <int D>
 std::vector<Record<D>> distinct_block(std::vector<Record<D>> got) {
-  std::sort(got.begin(), got.end(), [](const Record<D>& a, const Record<D>& b) {
-    for (int j = 0; j < D; ++j) {
-      if (a.x[j] < b.x[j]) return true;
-      if (b.x[j] < a.x[j]) return false;
-    }
-    return a.gid < b.gid;
-  });
-  std::vector<Record<D>> kept;
-  for (const Record<D>& r : got) {
-    bool same = !kept.empty();
-    for (int j = 0; same && j < D; ++j) same = kept.back().x[j] == r.x[j];
-    if (!same) kept.push_back(r);
-  }
-  std::sort(kept.begin(), kept.end(), [](const Record<D>& a, const Record<D>& b) { return a.gid < b.gid; });
-  return kept;
+  const auto by_gid = [](const Record<D>& a, const Record<D>& b) { return a.gid < b.gid; };
+  if (!std::is_sorted(got.begin(), got.end(), by_gid)) std::sort(got.begin(), got.end(), by_gid);
+  const std::vector<std::uint32_t> first = kernel::first_occurrences(
+      std::span<const Record<D>>(got),
+      [](const Record<D>& a, const Record<D>& b) { return a.x == b.x ? kernel::EQUAL : kernel::SMALLER; },
+      [](const Record<D>& r) -> const Coords<D>& { return r.x; });
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < got.size(); ++i)
+    if (first[i] == i) got[kept++] = got[i];
+  got.resize(kept);
+  got.shrink_to_fit();
+  return got;
 }
 
 /// Step 3's checks on the distinct points of all blocks (every rank decides alike).
@@ -835,14 +887,13 @@ void check_distinct_points(const Comm& c, const std::vector<Record<D>>& block) {
 }  // namespace
 
 template <int D>
-Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
-                      const Options& options) {
+Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options) {
   const kernel::Fp_environment_guard guard;
   Comm c{comm};
   MPI_Comm_rank(comm, &c.rank);
   MPI_Comm_size(comm, &c.size);
-  Result<D> result;
-  Statistics& st = result.statistics;
+  Statistics st;
   st.local_points = local.size();
 
   // 1. Non-finite coordinates: the smallest such global index, on every rank.
@@ -854,16 +905,27 @@ Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, 
   if (first_bad != std::numeric_limits<std::uint64_t>::max())
     throw Invalid_input(first_bad, "has a non-finite coordinate (NaN or infinity)");
 
-  // 2. The blocks.
+  // 2. The blocks: the records packed by destination rank (a counting sort),
+  // sent in one exchange.
   const double t0 = MPI_Wtime();
-  std::vector<std::vector<Record<D>>> out(c.size);
-  run_collectively(comm, [&] {
-    const std::vector<int> rank_of = decompose<D>(c, local);
-    for (std::size_t i = 0; i < local.size(); ++i) out[rank_of[i]].push_back({global_offset + i, local[i].x});
-  });
   std::vector<Record<D>> block;
-  run_collectively(comm, [&] { block = distinct_block<D>(alltoall(c, out)); });
-  std::vector<std::vector<Record<D>>>().swap(out);
+  {
+    std::vector<Record<D>> send;
+    std::vector<std::uint64_t> count(c.size, 0);
+    run_collectively(comm, [&] {
+      const std::vector<int> rank_of = decompose<D>(c, local);
+      for (const int q : rank_of) ++count[q];
+      std::vector<std::uint64_t> at(c.size, 0);
+      for (int q = 1; q < c.size; ++q) at[q] = at[q - 1] + count[q - 1];
+      send.resize(local.size());
+      for (std::size_t i = 0; i < local.size(); ++i) send[at[rank_of[i]]++] = {global_offset + i, local[i].x};
+    });
+    run_collectively(comm, [&] {
+      std::vector<Record<D>> got = alltoall(c, send, count);
+      std::vector<Record<D>>().swap(send);
+      block = distinct_block<D>(std::move(got));
+    });
+  }
   st.decompose_seconds = MPI_Wtime() - t0;
   st.block_points = block.size();
 
@@ -872,13 +934,13 @@ Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, 
 
   // 4 and 5.
   Rank_triangulation<D> rt(c, std::move(block), options, st);
-  result.simplices = rt.run();
-  st.simplices = result.simplices.size();
-  return result;
+  rt.run(sink);
+  return st;
 }
 
-#define DEWALL_INSTANTIATE_MPI(D)                                                                           \
-  template Result<D> triangulate<D>(MPI_Comm, std::span<const kernel::Point_d<D>>, std::uint64_t, const Options&);
+#define DEWALL_INSTANTIATE_MPI(D)                                                                   \
+  template Statistics triangulate_into<D>(MPI_Comm, std::span<const kernel::Point_d<D>>, std::uint64_t, \
+                                          const Simplex_sink<D>&, const Options&);
 DEWALL_INSTANTIATE_MPI(2)
 DEWALL_INSTANTIATE_MPI(3)
 DEWALL_INSTANTIATE_MPI(4)

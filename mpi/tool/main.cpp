@@ -1,35 +1,49 @@
 // dewall-mpi: the Delaunay triangulation of a binary point file (.dwpt) on the
 // ranks of an MPI job.
 //
-//   mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats]
+//   mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--sorted | --per-rank]
 //
 // Reading: every rank checks the header and the file size itself, then reads
 // its share (points [n·r/R, n·(r+1)/R)) with pread: no rank holds all points.
-// Triangulating: dewall::mpi::triangulate. Writing: rank 0 gathers the
-// simplices (point-to-point, in chunks), each rank's list sorted, and merges
-// them (sorted: the same bytes for every R) and writes them through io::Output_file: a temporary renamed over OUT
-// once complete, so a failure, or a rank dying, leaves an old OUT untouched.
-// Errors: every rank learns the lowest failing rank's error and ends with it;
-// rank 0 prints it. Exit 1: the points cannot be triangulated (a non-finite
-// coordinate, too few distinct points, not spanning E^D); 2: usage, reading or
-// writing; 0: success.
+// Triangulating: dewall::mpi::triangulate_into, whose sink writes. Writing, by
+// default: rank 0 opens OUT through io::Output_file (a temporary renamed over
+// OUT once complete, so a failure, or a rank dying, leaves an old OUT
+// untouched), every rank writes its simplices into that temporary through
+// MPI-IO at the offset of the ranks before it (no rank holds more than its
+// own), and rank 0 renames it once every rank has closed it. The order is the
+// ranks' (the same bytes on every run with R ranks). --sorted: rank 0 gathers
+// the sorted lists, merges and writes them (the same bytes for every R; also
+// the way to a target written in place, a pipe or standard output).
+// --per-rank: one file per rank. Errors: every rank learns the lowest failing
+// rank's error and ends with it; rank 0 prints it. Exit 1: the points cannot
+// be triangulated (a non-finite coordinate, too few distinct points, not
+// spanning E^D); 2: usage, reading or writing; 0: success.
 #include <fcntl.h>
 #include <mpi.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <memory>
+#include <span>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
@@ -50,19 +64,27 @@ struct File_error : std::runtime_error {
 };
 
 const char* const usage_text =
-    "usage: mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--seed-spacings X]\n"
+    "usage: mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--sorted | --per-rank]\n"
+    "                                          [--seed-spacings X]\n"
     "\n"
     "The Delaunay triangulation of POINTS.dwpt (the binary point format, docs/formats.md)\n"
     "computed by R ranks, each reading its share of the file; the same simplices as\n"
     "`dewall triangulate` and CGAL for every R. OUT: .dwsx (binary), .ele, or a plain\n"
-    "list (one simplex per line, 0-based point indices); rank 0 writes it, sorted.\n"
-    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds)\n"
+    "list (one simplex per line, 0-based point indices), written by every rank at once\n"
+    "(MPI-IO): rank 0's simplices first, then rank 1's, ... (the same bytes on every run\n"
+    "with R ranks).\n"
+    "  --sorted  the simplices sorted (the same bytes for every R): rank 0 gathers and\n"
+    "            merges them, and writes the file alone\n"
+    "  --per-rank  each rank writes its own simplices (global point indices) to its own\n"
+    "            file, OUT with .r<rank> before the extension (out.r3.dwsx)\n"
+    "  --stats   per-rank figures on standard error (points, halo, rounds, seconds, CPU\n"
+    "            seconds, peak memory)\n"
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
     "            rank's block (default 1; 0: none); only the time changes\n";
 
 struct Arguments {
   std::string input, output;
-  bool stats = false;
+  bool stats = false, sorted = false, per_rank = false;
   dewall::mpi::Options options;
 };
 
@@ -75,6 +97,8 @@ Arguments parse(int argc, char** argv) {
   for (std::size_t i = 1; i < a.size(); ++i) {
     if (a[i] == "--help" || a[i] == "-h") throw Usage_error("");
     if (a[i] == "--stats") r.stats = true;
+    else if (a[i] == "--sorted") r.sorted = true;
+    else if (a[i] == "--per-rank") r.per_rank = true;
     else if (a[i] == "--seed-spacings") {
       if (i + 1 >= a.size()) throw Usage_error("--seed-spacings needs a number");
       std::size_t used = 0;
@@ -97,6 +121,7 @@ Arguments parse(int argc, char** argv) {
   if (r.input.empty()) throw Usage_error("missing input file");
   if (r.output.empty()) throw Usage_error("missing -o OUT");
   if (dewall::io::is_vtk_path(r.output)) throw Usage_error("VTK output needs every point on one rank; write .dwsx");
+  if (r.sorted && r.per_rank) throw Usage_error("--sorted and --per-rank exclude each other");
   return r;
 }
 
@@ -124,6 +149,7 @@ struct Share {
   int dimension = 0;
   std::uint64_t count = 0, first = 0;
   std::vector<double> coordinates;
+  double seconds = 0;  // reading it
 };
 
 Share read_share(const std::string& name, int rank, int size) {
@@ -194,82 +220,352 @@ void step(MPI_Comm comm, F&& f) {
   if (agreed.kind != Error_kind::none) dewall::mpi::throw_error(agreed);
 }
 
+enum class Format { binary, ele, plain };
+
+Format format_of(const std::string& path) {
+  const auto ends = [&](const char* e) {
+    const std::size_t n = std::strlen(e);
+    if (path.size() < n) return false;
+    for (std::size_t i = 0; i < n; ++i)
+      if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != e[i]) return false;
+    return true;
+  };
+  return ends(".dwsx") ? Format::binary : ends(".ele") ? Format::ele : Format::plain;
+}
+
+/// The file's header: .dwsx's (with the count) or .ele's; the plain list has none.
+std::string header_of(Format f, int dimension, std::uint64_t count) {
+  if (f == Format::binary) {
+    std::ostringstream out;
+    dewall::io::write_binary_simplices_header(out, dimension, count);
+    return out.str();
+  }
+  if (f == Format::ele) return std::to_string(count) + ' ' + std::to_string(dimension + 1) + " 0\n";
+  return {};
+}
+
+/// Appends the file's bytes for `batch` (32-bit indices, as `dewall` writes
+/// them): .dwsx little-endian, .ele rows numbered from `row`, else the plain list.
 template <int D>
-int triangulate(MPI_Comm comm, const Arguments& args, const Share& share, int rank, int size) {
+void append_rows(std::string& out, std::span<const dewall::mpi::Global_simplex<D>> batch, Format f,
+                 std::uint64_t& row) {
+  char number[24];
+  const auto put = [&](std::uint64_t x) { out.append(number, std::to_chars(number, number + sizeof number, x).ptr); };
+  for (const auto& s : batch) {
+    if (f == Format::binary) {
+      char b[4 * (D + 1)];
+      for (int i = 0; i <= D; ++i)
+        for (int k = 0; k < 4; ++k) b[4 * i + k] = static_cast<char>(s[i] >> (8 * k));
+      out.append(b, sizeof b);
+      continue;
+    }
+    if (f == Format::ele) {
+      put(row);
+      out += ' ';
+    }
+    for (int i = 0; i <= D; ++i) {
+      put(s[i]);
+      out += i == D ? '\n' : ' ';
+    }
+    ++row;
+  }
+}
+
+std::string mpi_error_text(int code) {
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  return std::string(text, static_cast<std::size_t>(length));
+}
+
+/// The output written by every rank at once through MPI-IO into the
+/// temporary that rank 0's io::Output_file created (rank 0 renames it into
+/// place once every rank has written and closed it). Each rank's simplices
+/// go at the offset the ranks before it fill (MPI_Exscan of the counts):
+/// .dwsx streamed as the simplices come (4 MiB at a time), the text formats
+/// formatted in memory first (their lengths vary). Write failures are
+/// recorded, not thrown (the sink runs inside dewall::mpi; the ranks agree
+/// afterwards).
+template <int D>
+class Collective_writer {
+ public:
+  Collective_writer(MPI_Comm comm, MPI_File fh, Format f, std::string name)
+      : comm_(comm), fh_(fh), format_(f), name_(std::move(name)) {
+    MPI_Comm_rank(comm, &rank_);
+  }
+  /// Collective (every rank is called, dewall::mpi's contract).
+  void start(std::uint64_t count) {
+    std::uint64_t before = 0, total = 0;
+    MPI_Exscan(&count, &before, 1, MPI_UINT64_T, MPI_SUM, comm_);
+    if (rank_ == 0) before = 0;  // MPI_Exscan leaves rank 0's undefined
+    MPI_Allreduce(&count, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
+    row_ = before;
+    try {  // this rank's alone, after the collective calls: recorded
+      if (format_ == Format::binary) buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
+      if (rank_ == 0) buffer_ += header_of(format_, D, total);
+      if (format_ == Format::binary)
+        offset_ = (rank_ == 0 ? 0 : header_of(format_, D, 0).size()) + before * (D + 1) * 4;
+    } catch (const std::exception& e) {
+      error_ = name_ + ": " + e.what();
+    }
+  }
+  void take(std::span<const dewall::mpi::Global_simplex<D>> batch) {
+    append_rows<D>(buffer_, batch, format_, row_);
+    if (format_ == Format::binary && buffer_.size() >= flush_bytes) flush();
+  }
+  /// Collective: writes what is left (the text formats: everything).
+  void finish() {
+    if (format_ != Format::binary) {
+      std::uint64_t bytes = buffer_.size(), before = 0;
+      MPI_Exscan(&bytes, &before, 1, MPI_UINT64_T, MPI_SUM, comm_);
+      offset_ = rank_ == 0 ? 0 : before;
+    }
+    flush();
+  }
+  /// The first write error on this rank, or empty.
+  const std::string& error() const { return error_; }
+
+ private:
+  static constexpr std::size_t flush_bytes = std::size_t{1} << 22;  // .dwsx: written 4 MiB at a time
+  void flush() {
+    for (std::size_t at = 0; at < buffer_.size() && error_.empty();) {
+      const int n = static_cast<int>(std::min<std::size_t>(buffer_.size() - at, std::size_t{1} << 30));
+      MPI_Status status;
+      const int rc = MPI_File_write_at(fh_, static_cast<MPI_Offset>(offset_), buffer_.data() + at, n, MPI_BYTE, &status);
+      int written = 0;
+      if (rc == MPI_SUCCESS) MPI_Get_count(&status, MPI_BYTE, &written);
+      if (rc != MPI_SUCCESS) error_ = name_ + ": write error: " + mpi_error_text(rc);
+      else if (written != n) error_ = name_ + ": write error: short write";
+      at += static_cast<std::size_t>(n);
+      offset_ += static_cast<std::uint64_t>(n);
+    }
+    buffer_.clear();
+  }
+  MPI_Comm comm_;
+  MPI_File fh_;
+  Format format_;
+  std::string name_, buffer_, error_;
+  int rank_ = 0;
+  std::uint64_t offset_ = 0, row_ = 0;
+};
+
+/// The statistics line of every rank, printed by rank 0.
+void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double read, double total, double write,
+                      int rank, int size) {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const std::array<double, 18> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
+                                       static_cast<double>(st.halo_points),  static_cast<double>(st.rounds),
+                                       static_cast<double>(st.builds),       static_cast<double>(st.queries_sent),
+                                       static_cast<double>(st.simplices),    st.decompose_seconds,
+                                       st.build_seconds,                     st.verify_seconds,
+                                       st.halo_seconds,                      st.finish_seconds,
+                                       write,                                total,
+                                       static_cast<double>(usage.ru_maxrss) / 1024.0,
+                                       static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                                           1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec),
+                                       st.index_seconds, read};
+  std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
+  MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
+             MPI_DOUBLE, 0, comm);
+  if (rank != 0) return;
+  std::fprintf(stderr,
+               "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds:   read decompose"
+               "  index  build verify   halo finish  write |  total    cpu | peak MB\n");
+  for (int q = 0; q < size; ++q) {
+    const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
+    std::fprintf(stderr,
+                 "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %6.3f %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
+                 "| %6.3f %6.3f | %7.0f\n",
+                 q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[17], e[7], e[16], e[8], e[9],
+                 e[10], e[11], e[12], e[13], e[15], e[14]);
+  }
+}
+
+/// Runs f, keeping its exception (the first) in `failed` instead of throwing:
+/// a sink runs inside dewall::mpi, and a rank leaving it early would leave the
+/// others waiting in the next collective call.
+template <class F>
+void guarded(std::exception_ptr& failed, F&& f) {
+  if (failed) return;
+  try {
+    f();
+  } catch (...) {
+    failed = std::current_exception();
+  }
+}
+
+/// OUT with ".r<rank>" before its extension (the per-rank files).
+std::string per_rank_name(const std::string& out, int rank) {
+  const std::size_t slash = out.find_last_of('/');
+  const std::size_t dot = out.find_last_of('.');
+  const std::string tag = ".r" + std::to_string(rank);
+  if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1)
+    return out + tag;
+  return out.substr(0, dot) + tag + out.substr(dot);
+}
+
+template <int D>
+int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int size) {
   const double t0 = MPI_Wtime();
+  using S = dewall::mpi::Global_simplex<D>;
   std::vector<dewall::kernel::Point_d<D>> points(share.coordinates.size() / D);
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int j = 0; j < D; ++j) points[i][j] = share.coordinates[i * D + static_cast<std::size_t>(j)];
-  dewall::mpi::Result<D> r;
-  try {
-    r = dewall::mpi::triangulate<D>(comm, points, share.first, args.options);
-  } catch (const dewall::Invalid_input& e) {
+  std::vector<double>().swap(share.coordinates);
+  const Format format = format_of(args.output);
+  const std::span<const dewall::kernel::Point_d<D>> local(points);
+  dewall::mpi::Statistics st;
+  double write_seconds = 0;
+  const auto report_invalid = [&](const dewall::Invalid_input& e) {
     if (rank == 0) std::fprintf(stderr, "dewall-mpi: %s: %s\n", args.input.c_str(), e.what());
     return 1;
-  }
-  const double t1 = MPI_Wtime();
-  // Gather on rank 0, in chunks (no 2^31 limit on the total).
-  constexpr std::size_t chunk = std::size_t{1} << 24;  // simplices per message
-  using S = dewall::mpi::Global_simplex<D>;
-  std::vector<S> all;
-  if (rank == 0) {
-    // Each rank's list comes sorted: merge them as they arrive.
-    all = std::move(r.simplices);
-    for (int q = 1; q < size; ++q) {
-      std::uint64_t n = 0;
-      MPI_Recv(&n, 1, MPI_UINT64_T, q, 0, comm, MPI_STATUS_IGNORE);
-      const std::size_t at = all.size();
-      all.resize(at + n);
-      for (std::size_t k = 0; k < n; k += chunk) {
-        const std::size_t m = std::min<std::size_t>(chunk, n - k);
-        MPI_Recv(all.data() + at + k, static_cast<int>(m * sizeof(S)), MPI_BYTE, q, 1, comm, MPI_STATUS_IGNORE);
+  };
+
+  if (args.per_rank) {
+    // Each rank its own file, committed once every rank has written its own.
+    const std::string name = per_rank_name(args.output, rank);
+    std::unique_ptr<dewall::io::Output_file> file;
+    step(comm, [&] { file = std::make_unique<dewall::io::Output_file>(name); });
+    std::string text;
+    std::uint64_t row = 0;
+    struct Sink {
+      dewall::io::Output_file& file;
+      std::string& text;
+      std::uint64_t& row;
+      Format format;
+      void start(std::uint64_t count) {
+        text = header_of(format, D, count);
+        file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
       }
-      std::inplace_merge(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(at), all.end());
+      void take(std::span<const S> batch) {
+        text.clear();
+        append_rows<D>(text, batch, format, row);
+        file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+      }
+    } sink{*file, text, row, format};
+    std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
+    dewall::mpi::Simplex_sink<D> s;
+    s.start = [&](std::uint64_t n) { guarded(failed, [&] { sink.start(n); }); };
+    s.take = [&](std::span<const S> b) { guarded(failed, [&] { sink.take(b); }); };
+    try {
+      st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+    } catch (const dewall::Invalid_input& e) {
+      return report_invalid(e);
     }
+    const double t1 = MPI_Wtime();
+    step(comm, [&] {
+      if (failed) std::rethrow_exception(failed);
+      file->check();
+    });
+    step(comm, [&] { file->commit(); });
+    write_seconds = MPI_Wtime() - t1;
   } else {
-    const std::uint64_t n = r.simplices.size();
-    MPI_Send(&n, 1, MPI_UINT64_T, 0, 0, comm);
-    for (std::size_t k = 0; k < n; k += chunk) {
-      const std::size_t m = std::min<std::size_t>(chunk, n - k);
-      MPI_Send(r.simplices.data() + k, static_cast<int>(m * sizeof(S)), MPI_BYTE, 0, 1, comm);
-    }
-    std::vector<S>().swap(r.simplices);
-  }
-  step(comm, [&] {
-    if (rank != 0) return;
-    dewall::io::Simplex_table table;
-    table.vertices_per_simplex = D + 1;
-    table.indices.reserve(all.size() * (D + 1));
-    for (const S& s : all)
-      for (const std::uint64_t v : s) table.indices.push_back(static_cast<std::uint32_t>(v));
-    std::vector<S>().swap(all);
-    dewall::io::write_simplices_file(args.output, table, 0);
-  });
-  const double t2 = MPI_Wtime();
-  if (args.stats) {
-    const dewall::mpi::Statistics& st = r.statistics;
-    const std::array<double, 14> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
-                                         static_cast<double>(st.halo_points),  static_cast<double>(st.rounds),
-                                         static_cast<double>(st.builds),       static_cast<double>(st.queries_sent),
-                                         static_cast<double>(st.simplices),    st.decompose_seconds,
-                                         st.build_seconds,                     st.verify_seconds,
-                                         st.halo_seconds,                      st.finish_seconds,
-                                         t1 - t0,                              t2 - t1};
-    std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
-    MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
-               MPI_DOUBLE, 0, comm);
-    if (rank == 0) {
-      std::fprintf(stderr,
-                   "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds: decompose"
-                   "  build verify   halo finish | triangulate gather+write\n");
-      for (int q = 0; q < size; ++q) {
-        const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
-        std::fprintf(stderr, "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %9.3f %6.3f %6.3f %6.3f %6.3f | %11.3f %12.3f\n",
-                     q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[7], e[8],
-                     e[9], e[10], e[11], e[12], e[13]);
+    // Rank 0 opens the output: a temporary, which every rank then writes
+    // through MPI-IO, or, for a target written in place (standard output, a
+    // pipe) and for --sorted, the file rank 0 writes alone after gathering.
+    std::unique_ptr<dewall::io::Output_file> file;
+    int gather = args.sorted ? 1 : 0;
+    std::string temporary;
+    step(comm, [&] {
+      if (rank != 0) return;
+      file = std::make_unique<dewall::io::Output_file>(args.output);
+      if (file->direct()) gather = 1;
+      temporary = file->temporary_path();
+    });
+    MPI_Bcast(&gather, 1, MPI_INT, 0, comm);
+    if (!gather) {
+      std::uint64_t length = temporary.size();
+      MPI_Bcast(&length, 1, MPI_UINT64_T, 0, comm);
+      temporary.resize(length);
+      MPI_Bcast(temporary.data(), static_cast<int>(length), MPI_CHAR, 0, comm);
+      MPI_File fh = MPI_FILE_NULL;
+      const int rc = MPI_File_open(comm, temporary.c_str(), MPI_MODE_WRONLY, MPI_INFO_NULL, &fh);
+      step(comm, [&] {
+        if (rc != MPI_SUCCESS) throw File_error(args.output + ": cannot open its temporary for MPI-IO: " + mpi_error_text(rc));
+      });
+      Collective_writer<D> writer(comm, fh, format, args.output);
+      std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
+      dewall::mpi::Simplex_sink<D> s;
+      s.start = [&](std::uint64_t n) { writer.start(n); };  // collective: must not be skipped
+      s.take = [&](std::span<const S> b) { guarded(failed, [&] { writer.take(b); }); };
+      try {
+        st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+      } catch (...) {
+        MPI_File_close(&fh);  // every rank is here (the library's errors are collective); rank 0's file removes the temporary
+        try {
+          throw;
+        } catch (const dewall::Invalid_input& e) {
+          return report_invalid(e);
+        }
       }
+      const double t1 = MPI_Wtime();
+      writer.finish();
+      const int closed = MPI_File_close(&fh);
+      step(comm, [&] {
+        if (failed) std::rethrow_exception(failed);
+        if (!writer.error().empty()) throw File_error(writer.error());
+        if (closed != MPI_SUCCESS) throw File_error(args.output + ": write error: " + mpi_error_text(closed));
+      });
+      step(comm, [&] {
+        if (rank == 0) file->commit();
+      });
+      write_seconds = MPI_Wtime() - t1;
+    } else {
+      dewall::mpi::Result<D> r;
+      try {
+        r = dewall::mpi::triangulate<D>(comm, local, share.first, args.options);
+      } catch (const dewall::Invalid_input& e) {
+        return report_invalid(e);
+      }
+      st = r.statistics;
+      const double t1 = MPI_Wtime();
+      if (args.sorted) std::sort(r.simplices.begin(), r.simplices.end());
+      // Gather on rank 0 in rank order, in chunks (no 2^31 limit on the
+      // total); --sorted merges the ranks' sorted lists as they arrive.
+      constexpr std::size_t chunk = std::size_t{1} << 24;  // simplices per message
+      std::vector<S> all;
+      if (rank == 0) {
+        all = std::move(r.simplices);
+        for (int q = 1; q < size; ++q) {
+          std::uint64_t n = 0;
+          MPI_Recv(&n, 1, MPI_UINT64_T, q, 0, comm, MPI_STATUS_IGNORE);
+          const std::size_t at = all.size();
+          all.resize(at + n);
+          for (std::size_t k = 0; k < n; k += chunk) {
+            const std::size_t m = std::min<std::size_t>(chunk, n - k);
+            MPI_Recv(all.data() + at + k, static_cast<int>(m * sizeof(S)), MPI_BYTE, q, 1, comm, MPI_STATUS_IGNORE);
+          }
+          if (args.sorted) std::inplace_merge(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(at), all.end());
+        }
+      } else {
+        const std::uint64_t n = r.simplices.size();
+        MPI_Send(&n, 1, MPI_UINT64_T, 0, 0, comm);
+        for (std::size_t k = 0; k < n; k += chunk) {
+          const std::size_t m = std::min<std::size_t>(chunk, n - k);
+          MPI_Send(r.simplices.data() + k, static_cast<int>(m * sizeof(S)), MPI_BYTE, 0, 1, comm);
+        }
+        std::vector<S>().swap(r.simplices);
+      }
+      step(comm, [&] {
+        if (rank != 0) return;
+        std::string text = header_of(format, D, all.size());
+        std::uint64_t row = 0;
+        std::ostream& out = file->stream();
+        for (std::size_t k = 0; k < all.size() && out; k += 4096) {
+          append_rows<D>(text, std::span<const S>(all).subspan(k, std::min<std::size_t>(4096, all.size() - k)), format,
+                         row);
+          out.write(text.data(), static_cast<std::streamsize>(text.size()));
+          text.clear();
+        }
+        out.write(text.data(), static_cast<std::streamsize>(text.size()));
+        std::vector<S>().swap(all);
+        file->commit();
+      });
+      write_seconds = MPI_Wtime() - t1;
     }
   }
+  if (args.stats) print_statistics(comm, st, share.seconds, MPI_Wtime() - t0, write_seconds, rank, size);
   return 0;
 }
 
@@ -286,13 +582,15 @@ int run(int argc, char** argv, int rank, int size) {
   }
   try {
     Share share;
+    const double t = MPI_Wtime();
     step(MPI_COMM_WORLD, [&] { share = read_share(args.input, rank, size); });
+    share.seconds = MPI_Wtime() - t;
     switch (share.dimension) {
-      case 2: return triangulate<2>(MPI_COMM_WORLD, args, share, rank, size);
-      case 3: return triangulate<3>(MPI_COMM_WORLD, args, share, rank, size);
-      case 4: return triangulate<4>(MPI_COMM_WORLD, args, share, rank, size);
-      case 5: return triangulate<5>(MPI_COMM_WORLD, args, share, rank, size);
-      default: return triangulate<6>(MPI_COMM_WORLD, args, share, rank, size);
+      case 2: return triangulate<2>(MPI_COMM_WORLD, args, std::move(share), rank, size);
+      case 3: return triangulate<3>(MPI_COMM_WORLD, args, std::move(share), rank, size);
+      case 4: return triangulate<4>(MPI_COMM_WORLD, args, std::move(share), rank, size);
+      case 5: return triangulate<5>(MPI_COMM_WORLD, args, std::move(share), rank, size);
+      default: return triangulate<6>(MPI_COMM_WORLD, args, std::move(share), rank, size);
     }
   } catch (const dewall::Invalid_input& e) {
     if (rank == 0) std::fprintf(stderr, "dewall-mpi: %s: %s\n", args.input.c_str(), e.what());
@@ -306,6 +604,9 @@ int run(int argc, char** argv, int rank, int size) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before MPI_Init (nothing is connected yet): huge pages for the heap, as
+  // `dewall` has them (the engine chases pointers through its cells).
+  dewall::io::restart_with_huge_pages(argv);
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The dewall-mpi tool through mpiexec (ctest: mpi_tool, tests/CMakeLists.txt):
-#   * the output, certified canonical (CGAL's simplices) by `dewall certify`,
-#     has the same bytes for 1, 2, 3 and 4 ranks (3D; 1 and 3 in 2D) and on a second run;
+#   * the output, certified canonical (CGAL's simplices) by `dewall certify`
+#     for 1, 2, 3 and 4 ranks (3D; 1 and 3 in 2D), has the same bytes on a
+#     second run; with --sorted the same bytes for every number of ranks;
+#   * .ele and the plain list (MPI-IO), standard output, --per-rank files;
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
 #   * no -o: exit 2, the usage once;
@@ -31,12 +33,32 @@ for input in u3 b2; do
     [ "$status" -eq 0 ] || { fail "$input on $ranks ranks: exit $status"; cat run.log >&2; continue; }
     "$dewall" certify "$input.dwpt" "$input.$ranks.dwsx" --canonical >certify.log 2>&1 ||
       { fail "$input on $ranks ranks: not CGAL's triangulation"; cat certify.log >&2; }
-    cmp -s "$input.1.dwsx" "$input.$ranks.dwsx" || fail "$input: the bytes differ between 1 and $ranks ranks"
+    run "$ranks" triangulate "$input.dwpt" -o "$input.$ranks.sorted.dwsx" --sorted
+    [ "$status" -eq 0 ] || { fail "$input on $ranks ranks, --sorted: exit $status"; cat run.log >&2; continue; }
+    cmp -s "$input.1.sorted.dwsx" "$input.$ranks.sorted.dwsx" ||
+      fail "$input --sorted: the bytes differ between 1 and $ranks ranks"
   done
 done
+"$dewall" certify u3.dwpt u3.1.sorted.dwsx --canonical >certify.log 2>&1 ||
+  { fail "u3 --sorted: not CGAL's triangulation"; cat certify.log >&2; }
 run 3 triangulate u3.dwpt -o u3.again.dwsx
 cmp -s u3.3.dwsx u3.again.dwsx || fail "u3: two runs on 3 ranks differ"
-echo "outputs: canonical, the same bytes for 1-4 ranks and on a second run"
+echo "outputs: canonical, the same bytes on a second run, --sorted the same bytes for 1-4 ranks"
+
+# The text formats written through MPI-IO, standard output (rank 0 alone) and per-rank files.
+run 3 triangulate u3.dwpt -o u3.3.ele
+[ "$status" -eq 0 ] && "$dewall" certify u3.dwpt u3.3.ele --canonical >certify.log 2>&1 ||
+  { fail "u3 on 3 ranks as .ele"; cat run.log certify.log >&2; }
+"$mpiexec" "$np" 2 "$tool" triangulate u3.dwpt -o - >u3.stdout.txt 2>run.log &&
+  "$dewall" certify u3.dwpt u3.stdout.txt --canonical >certify.log 2>&1 ||
+  { fail "u3 on 2 ranks to standard output"; cat run.log certify.log >&2; }
+run 3 triangulate u3.dwpt -o u3.parts.txt --per-rank
+cat u3.parts.r0.txt u3.parts.r1.txt u3.parts.r2.txt >u3.parts.txt 2>/dev/null
+[ "$status" -eq 0 ] && "$dewall" certify u3.dwpt u3.parts.txt --canonical >certify.log 2>&1 ||
+  { fail "u3 on 3 ranks, --per-rank"; cat run.log certify.log >&2; }
+run 3 triangulate u3.dwpt -o u3.3.txt
+cmp -s u3.3.txt u3.parts.txt || fail "u3: --per-rank's files differ from the parts of the one file"
+echo "text formats, standard output, per-rank files: canonical"
 
 # The errors. old.txt must survive each of them.
 echo "old contents" >old.txt

@@ -68,6 +68,8 @@ void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& 
     fail(name + ": threw " + x.what());
     return;
   }
+  // The count the sink was told first (Simplex_sink::start) is the count it got.
+  if (r.statistics.simplices != r.simplices.size()) fail(name + ": the announced count differs from the simplices");
   // Gather on rank 0.
   using S = mpi::Global_simplex<D>;
   const int bytes = static_cast<int>(r.simplices.size() * sizeof(S));

@@ -146,6 +146,17 @@ class Incremental_delaunay {
     insert_vertices(first, first + count);
   }
 
+  /// Room for `cells` cell slots, so that the cell arrays grow without
+  /// copying up to that many (a growing array's copy holds the old and the
+  /// new array at once: dewall::mpi, which counts each rank's peak memory,
+  /// reserves from an estimate; pages are touched only when cells use them).
+  void reserve(std::size_t cells) {
+    cells_.reserve(cells);
+    mark_.reserve(cells);
+  }
+  /// The number of vertices (finite), ids 0 … vertices() − 1.
+  std::size_t vertices() const { return points_.size(); }
+
   /// Tests: run is_valid() after every insertion (O(n) each), throwing
   /// std::logic_error at the first failure.
   bool check_each_insertion = false;

@@ -75,6 +75,10 @@ class Output_file {
   static void probe(const std::string& path);
   /// The target as messages name it ("<stdout>", or the path made printable).
   const std::string& name() const;
+  /// The temporary's path (empty for a target written in place): where other
+  /// processes may write the output before commit() (dewall-mpi's ranks write
+  /// their parts of it through MPI-IO, then rank 0 commits).
+  const std::string& temporary_path() const;
   /// True when the target is written in place (standard output, devices,
   /// FIFOs, sockets, /proc), false for a temporary renamed into place.
   bool direct() const;

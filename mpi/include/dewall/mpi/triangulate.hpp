@@ -10,8 +10,9 @@
 //     asks the ranks whose blocks a cell's ball may reach (a box proven to
 //     hold the closed ball) for their points there, in rounds, until no rank
 //     receives a new point;
-//  3. each rank then keeps the cells whose smallest global vertex index lies
-//     in its block: each simplex of the triangulation on exactly one rank.
+//  3. each rank then hands its sink the cells whose smallest global vertex
+//     index lies in its block: each simplex of the triangulation on exactly
+//     one rank.
 #pragma once
 
 #include <mpi.h>
@@ -19,6 +20,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -51,26 +53,37 @@ struct Statistics {
   std::size_t simplices = 0;       ///< simplices this rank owns
   double decompose_seconds = 0;    ///< cuts and point exchange
   double build_seconds = 0;        ///< triangulations
+  double index_seconds = 0;        ///< the kd-tree over the block's points (for answering questions)
   double halo_seconds = 0;         ///< answers and the exchanges of questions and answers
   double verify_seconds = 0;       ///< finding the cells to ask about, and the questions
-  double finish_seconds = 0;       ///< the owned simplices taken out and sorted
+  double finish_seconds = 0;       ///< the owned simplices taken out and handed to the sink
 };
 
-/// The rank's share of the triangulation.
+/// Where a rank's owned simplices go (the compiled entry point's form; the
+/// templates below build one from any callable). Called on the owning rank
+/// after the collective work is over, so an exception thrown from either
+/// function is that rank's alone (no other rank waits for it).
 template <int D>
-struct Result {
-  /// The simplices this rank owns, sorted: the cells whose smallest vertex
-  /// index lies in this rank's block. Over all ranks, each simplex of the
-  /// triangulation of all points exactly once.
-  std::vector<Global_simplex<D>> simplices;
-  Statistics statistics;
+struct Simplex_sink {
+  /// Optional: called once, first, with how many simplices this rank will
+  /// hand over — on every rank, 0 included, after dewall::mpi's last
+  /// collective call, so a sink may make collective calls of its own here
+  /// (dewall-mpi's MPI_Exscan of the file offsets).
+  std::function<void(std::uint64_t)> start;
+  /// The owned simplices, a batch at a time (batches of a few thousand).
+  std::function<void(std::span<const Global_simplex<D>>)> take;
 };
 
 /// Collective over `comm`: the Delaunay triangulation (under CGAL's symbolic
 /// perturbation) of the union of every rank's `local` points, local point i
-/// having the global index `global_offset + i`. Global indices must be
-/// distinct over the ranks (the ranges disjoint); they define the input order
-/// for duplicates: of equal points, the one of smallest global index is the
+/// having the global index `global_offset + i`; each rank hands `sink` the
+/// simplices it owns — the cells whose smallest vertex index lies in its
+/// block — so that over all ranks each simplex of the triangulation comes
+/// exactly once. The order on a rank is the order of the rank's cells: the
+/// same on every run with the same points and number of ranks (sort them for
+/// an order that does not depend on R). Global indices must be distinct over
+/// the ranks (the ranges disjoint); they define the input order for
+/// duplicates: of equal points, the one of smallest global index is the
 /// vertex, the others appear in no simplex (dewall::triangulate's and CGAL's
 /// rule). A rank may pass no points.
 /// \throws dewall::Invalid_input on every rank, with the same message, for a
@@ -81,20 +94,43 @@ struct Result {
 /// the message of the lowest failing rank: no rank is left waiting.
 /// \pre every rank calls it with the same D and Options; MPI is initialised.
 /// Complexity: per rank, about the incremental construction of its block and
-/// halo, once per round with new points (2 – 4 rounds measured).
+/// halo, once per round with new points (2 – 5 rounds measured); memory: the
+/// rank's points, halo and cells (no list of simplices is kept).
 template <int D>
-Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
-                      const Options& options = {});
+Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options = {});
 
-/// As triangulate, handing each owned simplex to sink(const Global_simplex<D>&)
-/// on its rank (after the collective work: an exception from the sink is that
-/// rank's alone).
+/// As triangulate_into, handing each owned simplex to sink(const
+/// Global_simplex<D>&), after sink.start(count) when the sink has that member.
 template <int D, class Sink>
 Statistics triangulate_to(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
                           Sink&& sink, const Options& options = {}) {
-  Result<D> r = triangulate<D>(comm, local, global_offset, options);
-  for (const Global_simplex<D>& s : r.simplices) sink(s);
-  return r.statistics;
+  Simplex_sink<D> s;
+  if constexpr (requires { sink.start(std::uint64_t{}); }) s.start = [&](std::uint64_t n) { sink.start(n); };
+  s.take = [&](std::span<const Global_simplex<D>> batch) {
+    for (const Global_simplex<D>& x : batch) sink(x);
+  };
+  return triangulate_into<D>(comm, local, global_offset, s, options);
+}
+
+/// The rank's share of the triangulation.
+template <int D>
+struct Result {
+  /// The simplices this rank owns, in triangulate_into's order.
+  std::vector<Global_simplex<D>> simplices;
+  Statistics statistics;
+};
+
+/// As triangulate_into, collecting the rank's simplices.
+template <int D>
+Result<D> triangulate(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+                      const Options& options = {}) {
+  Result<D> r;
+  Simplex_sink<D> s;
+  s.start = [&](std::uint64_t n) { r.simplices.reserve(n); };
+  s.take = [&](std::span<const Global_simplex<D>> batch) { r.simplices.insert(r.simplices.end(), batch.begin(), batch.end()); };
+  r.statistics = triangulate_into<D>(comm, local, global_offset, s, options);
+  return r;
 }
 
 }  // namespace dewall::mpi
