@@ -403,17 +403,6 @@ class Block_index {
   std::vector<Node> nodes_;
 };
 
-/// About how many cells the triangulation of n points in E^D has, to reserve
-/// the engine's arrays in 2D and 3D (the expected count per point for
-/// uniform points, 2 and 6.77, rounded up: too much costs address space
-/// only). Above 3D the count per point varies too much with the input (32
-/// to 1000 and more for uniform points) to reserve: the arrays grow.
-template <int D>
-std::size_t estimated_cells(std::size_t n) {
-  if constexpr (D > 3) return 0;
-  return static_cast<std::size_t>((D == 2 ? 2.05 : 6.9) * static_cast<double>(n)) + 64;
-}
-
 /// The cells already verified, by their sorted global vertex indices (a hull
 /// facet: its D indices and the largest value for the infinite vertex).
 template <int D>
@@ -480,7 +469,7 @@ class Rank_triangulation {
               [&](std::size_t k) { return in_dt_ + k; });
         } else {
           dt = detail::Incremental_delaunay<D>();
-          dt.reserve(estimated_cells<D>(points_.size() + points_.size() / 8));
+          dt.reserve(detail::Incremental_delaunay<D>::expected_cells(points_.size() + points_.size() / 8));
           built = dt.build(points_.size(), coords, [](std::size_t k) { return k; }, &all_blocks_);
         }
         ++stats_.builds;

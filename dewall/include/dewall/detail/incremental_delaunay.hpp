@@ -115,7 +115,7 @@ class Incremental_delaunay {
     static_filter_ = filter_box ? kernel::Static_filter_d<D>(filter_box->lo, filter_box->hi)
                                 : kernel::Static_filter_d<D>(box.lo, box.hi);
     if (!start(coordinates, order)) return false;
-    reserve_cells(count);
+    reserve(expected_cells(count));
     points_.resize(count);
     input_.resize(count);
     for (std::size_t k = 0; k < count; ++k) {
@@ -147,12 +147,22 @@ class Incremental_delaunay {
   }
 
   /// Room for `cells` cell slots, so that the cell arrays grow without
-  /// copying up to that many (a growing array's copy holds the old and the
-  /// new array at once: dewall::mpi, which counts each rank's peak memory,
-  /// reserves from an estimate; pages are touched only when cells use them).
+  /// copying up to that many: a copy writes fresh pages the kernel must clear
+  /// first (a sixth of the time at 10^6 points here) and holds the old and
+  /// the new array at once (dewall::mpi counts each rank's peak memory).
+  /// Pages are touched only when cells use them: what is reserved and never
+  /// used stays unbacked address space. build() reserves expected_cells.
   void reserve(std::size_t cells) {
-    cells_.reserve(cells);
-    mark_.reserve(cells);
+    cells_.reserve(std::min(cells, max_slots));
+    mark_.reserve(std::min(cells, max_slots));
+  }
+  /// Cell slots to reserve for `count` points: a little above the cells of
+  /// uniform points (2 per point in the plane, 6.8 in space), so that volume
+  /// data never grows; surfaces (up to 16 per point) grow once or twice.
+  /// Above 3D the count per point varies too much with the input (32 to 1000
+  /// and more) to reserve: the arrays grow.
+  static constexpr std::size_t expected_cells(std::size_t count) {
+    return D == 2 ? 3 * count : D == 3 ? 8 * count : 0;
   }
   /// The number of vertices (finite), ids 0 … vertices() − 1.
   std::size_t vertices() const { return points_.size(); }
@@ -311,18 +321,6 @@ class Incremental_delaunay {
     last_ = 0;
     mark_.assign(cells_.size(), 0);
     return true;
-  }
-
-  /// Room for the cells of `count` points' triangulation, so that the arrays
-  /// do not grow by copying (each copy writes fresh pages the kernel must
-  /// clear first). What is reserved and never used stays unbacked address space.
-  void reserve_cells(std::size_t count) {
-    // Cells per point: 2 in the plane, about 6.7 for uniform points in space
-    // (up to 16 on sampled surfaces: they grow once or twice), more above.
-    constexpr std::size_t per_point = D == 2 ? 3 : D == 3 ? 8 : 0;
-    const std::size_t expected = std::min<std::size_t>(per_point * count, max_slots);
-    cells_.reserve(expected);
-    mark_.reserve(expected);
   }
 
   int position(std::size_t c, Index v) const {
