@@ -39,6 +39,17 @@ std::uint64_t face_hash(const Face<D>& key) {
   return h;
 }
 
+/// The simplex of face f and apex a: f followed by a, so positively oriented
+/// when a lies on f's outer side (the convention above). Every simplex DeWall
+/// builds is made here.
+template <int D>
+Simplex<D> with_apex(const Face<D>& f, Index a) {
+  Simplex<D> s;
+  std::copy(f.begin(), f.end(), s.begin());
+  s[D] = a;
+  return s;
+}
+
 /// The face of the positively oriented simplex s opposite vertex i, oriented so
 /// that its outer side is away from s[i].
 /// Derivation: moving q from position i to the end of (s_0 … q … s_D) takes D − i
