@@ -3,7 +3,7 @@
 // Convention: a face (f_0 … f_{D−1}) is stored so that its *outer* side is where
 // orientation_d(f_0, …, f_{D−1}, q) is POSITIVE. A simplex is emitted as its
 // face followed by its apex, hence positively oriented. Topology only: no
-// geometry here (STYLE 15).
+// geometry here (ARCHITECTURE.md, "Topology knows no geometry").
 #pragma once
 
 #include <algorithm>

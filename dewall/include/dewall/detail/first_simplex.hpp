@@ -52,8 +52,8 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
     for (int j = 0; j < D; ++j) s += (x[p][j] - x[a][j]) * (x[p][j] - x[a][j]);
     return s;
   };
-  // The points by distance to a, sorted only as far as the attempts reach (a
-  // full sort took 0.1 s of the first wall at 10^6 points; usually 4·D suffice).
+  // The points by distance to a, sorted only as far as the attempts reach
+  // (usually 4·D suffice; a full sort is a visible part of the first wall).
   std::vector<Index> near(points.begin(), points.end());
   near.erase(std::remove(near.begin(), near.end(), a), near.end());
   std::size_t sorted = 0;

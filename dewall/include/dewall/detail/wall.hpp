@@ -42,7 +42,7 @@
 #include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/first_simplex.hpp"
 #include "dewall/detail/region.hpp"
-#include "dewall/detail/search_budget.hpp"
+#include "dewall/detail/handover_rule.hpp"
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
@@ -63,7 +63,7 @@ class Wall_builder {
  public:
   /// parallel_depth: recursion levels whose two subproblems run as parallel
   /// tasks (0: serial). budget: when given, each task's searches are charged
-  /// to a copy of it (search_budget.hpp).
+  /// to a copy of it (handover_rule.hpp).
   /// regions: when given, a subproblem of at most region_points points is
   /// triangulated by it instead of by more walls (region.hpp).
   /// decision: when given (streaming with a budget), settled by the first
@@ -101,8 +101,8 @@ class Wall_builder {
     /// above leave (not extended with faces' vertices, split_points), and no
     /// region above it was flat (a subset of a set that does not span E^D does
     /// not either: two planes, the paper's Figure 7, split into flat halves
-    /// below the wall between them, and trying each level again cost 2×
-    /// DeWall's whole time).
+    /// below the wall between them, and trying each level again costs more
+    /// than DeWall's whole run).
     bool regions_apply = true;
   };
 
@@ -148,8 +148,8 @@ class Wall_builder {
     const Cut cut = split_points(p, extended);
     // A half on one axis-parallel plane has no simplex of its own: two layers
     // (the paper's Figure 7) leave them all to this wall, built at DeWall's
-    // speed on one core (2.4× CGAL's time at 10^5 points). A region of any
-    // size does the same work at CGAL's.
+    // speed on one core. A region of any size does the same work at the
+    // incremental construction's speed.
     if (region_may_take(p) &&
         (on_one_axis_plane(p.points.first(cut.side1_size)) || on_one_axis_plane(p.points.subspan(cut.side1_size))) &&
         as_region(p, task))
@@ -286,12 +286,8 @@ class Wall_builder {
   bool triangulate_region(Subproblem& p, Task& task) {
     // Known not to span E^D without building the triangulator's lower-dimensional one.
     if (on_one_axis_plane(p.points)) return false;
-    // The automatic engine hands over when a region saves no search: when
-    // most of its cells' spheres leave it, each of those needs the exact
-    // search, and the region costs CGAL's work plus DeWall's. Measured share of
-    // such cells per region (10^5 points): two layers 62 %; uniform, ball,
-    // bubbles, eight layers 3–7 %; 2D 1 %. Decided as soon as the share passes
-    // a quarter (the count only grows, so the decision is the same).
+    // With a budget, the automatic engine hands over when a region saves no
+    // search (handover_rule.hpp, Region_handover).
     struct Filter final : Region_filter<D> {
       Wall_builder& builder;
       const Region_bounds<D>& bounds;
@@ -299,15 +295,13 @@ class Wall_builder {
       Built_simplices<D>& out;
       Simplex_search<K>& search;
       std::size_t depth;
-      std::size_t cells = 0, sphere_tests = 0;
-      bool may_hand_over = false;
+      Region_handover handover;
 
       Filter(Wall_builder& b, const Region_bounds<D>& bo, Active_face_list<D>& a, Built_simplices<D>& o,
              Simplex_search<K>& s, std::size_t d)
           : builder(b), bounds(bo), afl(a), out(o), search(s), depth(d) {}
       void begin(std::size_t count) override {
-        cells = count;
-        may_hand_over = search.charges_budget() && count >= min_cells_for_handover;
+        handover = Region_handover(search.charges_budget(), count);
       }
       bool empty_of_others(const Simplex<D>& s) override {
         const Simplex_sphere<D> sphere = search.sphere_of(s);
@@ -318,7 +312,7 @@ class Wall_builder {
         // the walls' searches do.)
         if (ball.bounded && bounds.strictly_contains(ball.lo, ball.hi)) return true;
         const bool empty = search.is_empty_sphere(s, sphere);
-        if (may_hand_over && 4 * ++sphere_tests > cells) search.hand_over();
+        if (handover.searched_one()) search.hand_over();
         return empty;
       }
       void keep(const Simplex<D>& s, unsigned open) override {
@@ -380,9 +374,6 @@ class Wall_builder {
   const Point_set<K>& ps_;
   int parallel_depth_;
   std::optional<Search_budget> budget_;
-  // Regions smaller than this are never a reason to hand over (a few hull
-  // cells are a large share of a small region).
-  static constexpr std::size_t min_cells_for_handover = 4096;
   const Region_triangulator<D>* regions_;
   std::size_t region_points_;
   Handover_decision* decision_;
