@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/certify/report.hpp"
@@ -86,6 +87,15 @@ using Simplex_rows_sink = std::function<void(std::span<const std::uint32_t>)>;
 /// released once converted (10^8 points: 2.4 GB).
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
 Run triangulate_any(io::Point_table& table, const Options& options = {}, const Simplex_rows_sink* stream = nullptr);
+
+static_assert(io::min_dimension == kernel::min_dimension && io::max_dimension == kernel::max_dimension,
+              "the file formats accept the dimensions the library is compiled for");
+
+/// The range of --dim ("2 to 6") checked; \throws Usage_error otherwise.
+inline void check_dim_option(long dim) {
+  if (!io::is_supported_dimension(dim))
+    throw Usage_error("--dim must be " + io::dimension_range() + ", not " + std::to_string(dim));
+}
 
 /// Calls f(std::integral_constant<int, D>{}) for a dimension D = 2 … 6 known at
 /// run time. \throws Usage_error for any other dimension.

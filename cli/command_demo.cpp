@@ -31,7 +31,7 @@ int command_demo(int argc, char** argv) {
         } else return false;
         return true;
       });
-  if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6");
+  check_dim_option(dim);
   check_fits_in_memory(n, dim);
   std::printf("dewall demo: %zu %s points in E^%ld, seed %llu\n", n, io::point_kind_name(kind), dim,
               static_cast<unsigned long long>(seed));

@@ -57,7 +57,7 @@ int command_generate(int argc, char** argv) {
     throw Usage_error(std::string("--planes applies to kind planes only, not ") + io::point_kind_name(*kind));
   if (shape.planes != 0 && (shape.planes < 2 || shape.planes > 1000))
     throw Usage_error("--planes must be 2 to 1000, not " + std::to_string(shape.planes) + (shape.planes > 1000 ? " or more" : ""));
-  if (dim < 2 || dim > 6) throw Usage_error("--dim must be 2 to 6, not " + std::to_string(dim));
+  check_dim_option(dim);
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");

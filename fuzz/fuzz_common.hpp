@@ -2,8 +2,8 @@
 //
 // A harness reads its input through a Byte_source: every read succeeds (an
 // exhausted source yields zeros), so each byte string decodes to *some* valid
-// input and the fuzzer never wastes executions on rejected ones (STYLE.md rule
-// 12: trim the input to the valid domain first). Small, mutation-friendly
+// input and the fuzzer never wastes executions on rejected ones (the input is
+// trimmed to the valid domain first, as spade's fuzz targets do). Small, mutation-friendly
 // encodings are preferred: one byte picks a dimension or a family, one byte a
 // small integer, eight bytes a raw double. Coordinates come in styles chosen to
 // reach the parts of the kernel that plain random doubles never reach:

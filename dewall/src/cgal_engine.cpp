@@ -188,12 +188,7 @@ Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Sim
     }
     count = writer.finish();
   });
-  Statistics st;
-  st.input_points = points.size();
-  st.distinct_points = distinct.size();
-  st.simplices = count;
-  st.engine = Engine::cgal;
-  return st;
+  return incremental_statistics(Engine::cgal, points.size(), distinct.size(), count);
 }
 
 template <int D>

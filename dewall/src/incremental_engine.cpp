@@ -55,12 +55,7 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
   const Incremental_graph<D> graph{dt};
   for (std::size_t c = 0; c < dt.slots(); ++c)
     if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(graph.vertices(static_cast<std::uint32_t>(c)));
-  Statistics st;
-  st.input_points = points.size();
-  st.distinct_points = distinct.size();
-  st.simplices = writer.finish();
-  st.engine = Engine::incremental;
-  return st;
+  return incremental_statistics(Engine::incremental, points.size(), distinct.size(), writer.finish());
 }
 
 template <int D>

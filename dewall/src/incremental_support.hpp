@@ -13,6 +13,7 @@
 #include "dewall/detail/region.hpp"
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
+#include "dewall/options.hpp"
 
 namespace dewall::detail {
 
@@ -28,6 +29,18 @@ std::vector<std::size_t> checked_distinct_points(std::span<const kernel::Point_d
   for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
   require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
   return distinct;
+}
+
+/// What an incremental engine reports: the points, the simplices and itself
+/// (the walls' counters stay zero).
+inline Statistics incremental_statistics(Engine engine, std::size_t input_points, std::size_t distinct_points,
+                                         std::size_t simplices) {
+  Statistics st;
+  st.input_points = input_points;
+  st.distinct_points = distinct_points;
+  st.simplices = simplices;
+  st.engine = engine;
+  return st;
 }
 
 /// Hands simplices to a Simplex_output in blocks (wall level 0: no wall built them).

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "binary_format.hpp"
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/progress.hpp"
 
 namespace dewall::io {
@@ -39,8 +40,8 @@ Point_table read_binary_points(std::istream& in, const std::string& name, Progre
   if (version != binary_points_version)
     throw Parse_error(name + ": binary point format version " + std::to_string(version) + " is not supported (1)");
   if (flags != 0) throw Parse_error(name + ": unknown flags " + std::to_string(flags) + " in the header (expected 0)");
-  if (dimension < 2 || dimension > 6)
-    throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+  if (!is_supported_dimension(dimension))
+    throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
   if (count == 0) throw Parse_error(name + ": no points");
   // 2^58 points would already overflow the byte count; no real file is near it.
   if (count > (std::uint64_t{1} << 56))

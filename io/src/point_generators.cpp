@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/progress.hpp"
 
 namespace dewall::io {
@@ -370,8 +371,8 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     throw std::invalid_argument("plane count " + std::to_string(options.planes) + " is outside 2 … 1000");
   if (options.planes != 0 && kind != Point_kind::planes)
     throw std::invalid_argument(std::string("a plane count applies to kind planes only, not ") + point_kind_name(kind));
-  if (dimension < 2 || dimension > 6)
-    throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+  if (!is_supported_dimension(dimension))
+    throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
   if (n < static_cast<std::size_t>(dimension) + 1)
     throw std::invalid_argument("need at least " + std::to_string(dimension + 1) + " points in dimension " +
                                 std::to_string(dimension) + ", asked for " + std::to_string(n));

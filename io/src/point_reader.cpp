@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/vtk.hpp"
@@ -38,11 +39,12 @@ bool is_integer_token(std::string_view token) {
          std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
-/// \throws Parse_error unless `d` is a whole number from 2 to 6; `shown` is how
+/// \throws Parse_error unless `d` is a whole, supported dimension; `shown` is how
 /// the message writes it.
 void check_dimension(double d, std::string_view shown, const std::string& name, std::size_t line_no) {
-  if (!(d >= 2 && d <= 6 && d == std::floor(d)))
-    throw Parse_error(where(name, line_no) + "dimension " + std::string(shown) + " is not supported (2 to 6)");
+  if (!(is_supported_dimension(d) && d == std::floor(d)))
+    throw Parse_error(where(name, line_no) + "dimension " + std::string(shown) + " is not supported (" +
+                      dimension_range() + ")");
 }
 
 /// The next line holding data (blank and comment lines skipped), reporting
@@ -89,7 +91,8 @@ Point_table read_points(std::istream& in, const std::string& name, Progress* pro
   if (is_rbox_header(first, have_second ? second : std::string_view())) {
     // rbox: a dimension (maybe followed by rbox's command line), a lone count, then the rows.
     if (!is_integer_token(first[0]))
-      throw Parse_error(where(name, line_no) + "invalid dimension " + quoted(first[0]) + " (a whole number, 2 to 6)");
+      throw Parse_error(where(name, line_no) + "invalid dimension " + quoted(first[0]) + " (a whole number, " +
+                        dimension_range() + ")");
     const double dimension = detail::parse_double(first[0], name, line_no);
     check_dimension(dimension, first[0], name, line_no);
     t.dimension = static_cast<int>(dimension);
@@ -108,7 +111,7 @@ Point_table read_points(std::istream& in, const std::string& name, Progress* pro
     // One number per line for three lines: not rbox, but a single column,
     // which no point set is (without this, "expected 5 coordinates, found 1").
     if (first.size() == 1 && !line.empty() && tokens_of(line).size() == 1)
-      throw Parse_error(where(name, source.number()) + "one value per line: points need 2 to 6 coordinates per line " +
+      throw Parse_error(where(name, source.number()) + "one value per line: points need " + dimension_range() + " coordinates per line " +
                         "(read as rbox's format, lines " + std::to_string(line_no) + " and " + std::to_string(second_no) +
                         " would be the dimension and the point count)");
   } else {

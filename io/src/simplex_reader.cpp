@@ -5,6 +5,7 @@
 #include <string_view>
 
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
 #include "text_lines.hpp"
 
@@ -31,8 +32,8 @@ std::vector<std::uint64_t> parse_indices(std::string_view line, const std::strin
 }
 
 void check_dimension(int dimension, const std::string& name) {
-  if (dimension < 2 || dimension > 6)
-    throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (2 to 6)");
+  if (!is_supported_dimension(dimension))
+    throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
 }
 
 void add_row(Simplex_list& list, const std::vector<std::uint64_t>& v, std::size_t from, std::size_t shift,

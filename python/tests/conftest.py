@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 
-SEED = 20240614  # fixed, and printed in every failure report (STYLE 14)
+SEED = 20240614  # fixed, and printed in every failure report: a failure can be replayed
 
 
 def pytest_report_header(config):

@@ -15,7 +15,8 @@
 //                                  detail/face_side_filter.hpp, detail/pencil_rank.hpp
 //   uniform grid (here a kd-tree)  detail/kd_tree.hpp
 //   input checks, duplicates ..... detail/input.hpp
-//   the whole run, any kernel .... detail/triangulate_generic.hpp
+//   the whole run, any kernel .... detail/wall_engines.hpp (DeWall, the hybrid)
+//   which engine runs ............ dewall/src/engine_choice.hpp (compiled; automatic_engine.hpp)
 //
 // With the project's kernel (Filtered_kernel_d, the default) the triangulation
 // runs in the compiled library dewall::dewall (dewall/src/), built with the
@@ -44,7 +45,7 @@
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/options.hpp"
 #ifndef DEWALL_UNSAFE_FP_FLAGS
-#include "dewall/detail/triangulate_generic.hpp"
+#include "dewall/detail/wall_engines.hpp"
 #endif
 
 namespace dewall {
@@ -55,11 +56,11 @@ using Simplex = detail::Simplex<D>;
 
 namespace detail {
 
-/// The triangulation with the project's kernel, compiled into dewall::dewall
-/// (dewall/src/triangulate_filtered.hpp, instantiated by triangulate_filtered_<D>.cpp
-/// for D = 2 … 6); as triangulate_generic.
+/// The triangulation with the project's kernel by the engine Options::engine
+/// names, compiled into dewall::dewall (dewall/src/engine_choice.hpp,
+/// instantiated by engine_choice_<D>.cpp for D = 2 … 6); as triangulate_walls.
 template <int D>
-Statistics triangulate_filtered(std::span<const kernel::Point_d<D>> points, const Options& options,
+Statistics run_chosen_engine(std::span<const kernel::Point_d<D>> points, const Options& options,
                                 Simplex_output<D>& output);
 
 template <class>
@@ -72,7 +73,7 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
                       Simplex_output<K::dimension>& output) {
   if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
     (void)k;
-    return triangulate_filtered<K::dimension>(points, options, output);
+    return run_chosen_engine<K::dimension>(points, options, output);
   } else {
 #ifdef DEWALL_UNSAFE_FP_FLAGS
     static_assert(always_false<K>,
@@ -86,7 +87,7 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
     if (options.engine == Engine::cgal || options.engine == Engine::incremental || options.engine == Engine::hybrid)
       throw std::invalid_argument(std::string("dewall: Engine::") + engine_name(options.engine) +
                                   " needs the project's kernel (Filtered_kernel_d)");
-    return triangulate_generic<K>(k, points, options, output);
+    return triangulate_dewall<K>(k, points, options, output);
 #endif
   }
 }

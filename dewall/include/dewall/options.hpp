@@ -109,7 +109,7 @@ struct Options {
   /// candidate points per search on average, a predicate evaluation that the
   /// filters leave to the exact stage costing 100 candidates (the interval
   /// stage 10), counted from the first search, with an allowance of 64
-  /// searches' worth plus 4^(D−2)·n candidates (search_budget.hpp). A search
+  /// searches' worth plus 4^(D−2)·n candidates (handover_rule.hpp). A search
   /// must look at every point near the sphere it proves empty. With the
   /// kd-tree search the running average never exceeds 16 on 10^6 uniform 3D
   /// points, 30–55 on clusters and coplanar layers; it is 350–580 on noisy
@@ -143,7 +143,7 @@ struct Options {
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
   /// once whether to hand over to the incremental engine: it holds what it
   /// builds until the first region's simplices are kept, and never hands over
-  /// after that (search_budget.hpp, Handover_decision): a part of the input
+  /// after that (handover_rule.hpp, Handover_decision): a part of the input
   /// that would have handed over later is built by the walls and regions, at
   /// their speed (docs/engines.md). When it hands over, the incremental
   /// engine's triangulation is whole in memory, as it is without streaming.

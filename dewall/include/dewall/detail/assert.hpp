@@ -1,4 +1,4 @@
-// Assertion tiers (STYLE.md): DEWALL_ASSERT is always on (cheap invariants);
+// Assertion tiers, as CGAL's and Geogram's: DEWALL_ASSERT is always on (cheap invariants);
 // DEWALL_EXPENSIVE_ASSERT (O(n) checks: every search's answer against all
 // points, make_simplex.hpp) only when DEWALL_EXPENSIVE_CHECKS is defined, as the
 // fuzz harnesses define it (fuzz/CMakeLists.txt).

@@ -3,7 +3,7 @@
 // Convention: a face (f_0 … f_{D−1}) is stored so that its *outer* side is where
 // orientation_d(f_0, …, f_{D−1}, q) is POSITIVE. A simplex is emitted as its
 // face followed by its apex, hence positively oriented. Topology only: no
-// geometry here (STYLE 15).
+// geometry here (ARCHITECTURE.md, "Topology knows no geometry").
 #pragma once
 
 #include <algorithm>
@@ -37,6 +37,17 @@ std::uint64_t face_hash(const Face<D>& key) {
     h ^= h >> 32;
   }
   return h;
+}
+
+/// The simplex of face f and apex a: f followed by a, so positively oriented
+/// when a lies on f's outer side (the convention above). Every simplex DeWall
+/// builds is made here.
+template <int D>
+Simplex<D> with_apex(const Face<D>& f, Index a) {
+  Simplex<D> s;
+  std::copy(f.begin(), f.end(), s.begin());
+  s[D] = a;
+  return s;
 }
 
 /// The face of the positively oriented simplex s opposite vertex i, oriented so

@@ -52,8 +52,8 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
     for (int j = 0; j < D; ++j) s += (x[p][j] - x[a][j]) * (x[p][j] - x[a][j]);
     return s;
   };
-  // The points by distance to a, sorted only as far as the attempts reach (a
-  // full sort took 0.1 s of the first wall at 10^6 points; usually 4·D suffice).
+  // The points by distance to a, sorted only as far as the attempts reach
+  // (usually 4·D suffice; a full sort is a visible part of the first wall).
   std::vector<Index> near(points.begin(), points.end());
   near.erase(std::remove(near.begin(), near.end(), a), near.end());
   std::size_t sorted = 0;
@@ -79,9 +79,7 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
         for (int i = 0; i < D - 1; ++i) f[i + 1] = near[pick[i]];
         for (const Face<D>& g : {f, flipped<D>(f)}) {
           if (auto apex = search.make_simplex(g)) {
-            Simplex<D> s;
-            std::copy(g.begin(), g.end(), s.begin());
-            s[D] = *apex;
+            const Simplex<D> s = with_apex<D>(g, *apex);
             if (search.is_empty_sphere(s)) {
               found = s;
               break;
@@ -113,8 +111,7 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
       if (ps.orientation(g, t) != kernel::POSITIVE) continue;
       const auto apex = search.make_simplex(g);
       DEWALL_ASSERT(apex.has_value());  // t lies beyond g
-      std::copy(g.begin(), g.end(), s.begin());
-      s[D] = *apex;
+      s = with_apex<D>(g, *apex);
       moved = true;
     }
     DEWALL_ASSERT(moved);  // otherwise t would be inside s without being a vertex

@@ -1,4 +1,5 @@
-// Input checks and duplicate removal, before any predicate runs (STYLE 6, 11).
+// Input checks and duplicate removal, before any predicate runs: bad input is an
+// exception naming the point (error.hpp), found before it can reach a predicate.
 //  * Every coordinate must be finite: NaN and ±inf are errors naming the point.
 //  * Duplicates collapse to their first occurrence (CGAL's insert keeps the
 //    vertex already there), so a later copy's index never appears.

@@ -29,7 +29,7 @@
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/pencil_rank.hpp"
-#include "dewall/detail/search_budget.hpp"
+#include "dewall/detail/handover_rule.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/detail/point_set.hpp"
@@ -63,114 +63,22 @@ class Simplex_search {
     ++stats_.searches;
     if (budget_) budget_->begin_search();
     const Kd_tree<D>& tree = ps_.tree;
-    std::optional<Index> best;
-    Simplex<D> s;
-    std::copy(f.begin(), f.end(), s.begin());
-    Ball_box<D> ball;
-    std::array<const Coords<D>*, D> fc;
-    for (int i = 0; i < D; ++i) fc[i] = &ps_.coords[f[i]];
-    const Face_side_filter<D> side_filter(fc, tree.lower(), tree.upper());
-    const Pencil_rank<D> rank(fc, side_filter.normal());
-    // The sphere of the best (its proven filter and ball) is built lazily: a
-    // change of best inside the first leaves is checked by the kernel's
-    // predicate instead, and the older, larger ball still prunes correctly (the
-    // points better than the new best lie inside it, the spheres through f
-    // being nested on the outer side).
-    std::optional<Simplex_sphere<D>> sphere;
-    bool sphere_is_current = false;
-    auto refresh_sphere = [&] {
-      if (sphere_is_current || !best) return;
-      s[D] = *best;
-      sphere.emplace(coords_of(s));
-      ball = sphere->enclosing_box();
-      sphere_is_current = true;
-    };
-    auto consider = [&](Index q) {
-      if (is_vertex(f, q) || q == best) return;
-      if (best && ball.bounded && !in_box(ball, q)) return;
-      count_candidate();
-      std::optional<kernel::Sign> side;
-      if constexpr (kernel::approximate_coordinates_are_exact<K>) side = side_filter(ps_.coords[q]);
-      if (!side) side = ps_.orientation(f, q);
-      if (*side != kernel::POSITIVE) return;
-      if (best) {
-        s[D] = *best;
-        std::optional<bool> inside;
-        if constexpr (kernel::approximate_coordinates_are_exact<K>)
-          if (sphere_is_current) inside = ball.bounded ? sphere->inside_box(ps_.coords[q]) : sphere->inside(ps_.coords[q]);
-        if (!inside) inside = ps_.inside_sphere(s, q);
-        if (!*inside) return;
-      }
-      best = q;
-      sphere_is_current = false;
-    };
-    // Far searches (no outer point near the face: a hull face, or one whose
-    // sphere is large) are confined to the part of the bounding box on the
-    // outer side of f, computed when a scan ends without a best. A
-    // hull face whose hyperplane carries other points (a lattice's side) has
-    // no such part: answered without a scan.
-    Coords<D> outer_lo = tree.lower(), outer_hi = tree.upper();
-    bool clipped = false;
-    auto clip = [&] {
-      if (clipped) return true;
-      clipped = true;
-      return side_filter.clip_to_outer_side(outer_lo, outer_hi);
-    };
-    auto may_hold_better = [&](const Node& n) {
-      refresh_sphere();
-      if (best && !ball.may_meet(n.lo, n.hi)) return false;  // the test that prunes most, first
-      if (clipped && !boxes_meet(n.lo, n.hi, outer_lo, outer_hi)) return false;
-      return side_filter.box_may_hold_outer(n.lo, n.hi);
-    };
-    // The neighbourhood of f first: the points of the smallest subtree around
-    // the leaf of f_0 holding `near_points`. Its lead is the apex in about half
-    // of the searches (10^5 uniform points; 2.05 spheres built per search).
-    // Then, walking up, the subtree on the other side of each ancestor, pruned
-    // by the ball. Every point goes through the exact `consider`.
+    Apex_search search(*this, f);
+    // 1. The neighbourhood of f: every point of the smallest subtree around
+    //    the leaf of f_0 that holds `near_points`.
     Index from = tree.leaf_of(f[0]);
     while (from != 0 && tree.node(from).end - tree.node(from).begin < near_points) from = tree.node(from).parent;
-    // A run of consecutive points (a leaf, or the first subtree), the one of
-    // smallest pencil rank in the current ball first: it is usually the best
-    // of the run, so the best changes at most once (each change builds a sphere).
-    auto scan = [&](Index begin, Index end) {
-      Index lead = begin;
-      double lead_rank = std::numeric_limits<double>::infinity();
-      if (rank.valid())
-        for (Index q = begin; q < end; ++q) {
-          if (best && ball.bounded && !in_box(ball, q)) continue;
-          const double t = rank(ps_.coords[q]);
-          if (t < lead_rank && !is_vertex(f, q)) {  // a vertex's rank is 0/0 up to rounding
-            lead_rank = t;
-            lead = q;
-          }
-        }
-      consider(lead);
-      refresh_sphere();  // its ball prunes the rest
-      for (Index q = begin; q < end; ++q) consider(q);
-    };
-    scan(tree.node(from).begin, tree.node(from).end);
-    // Every point of the subtree at `from` has been considered. Any other
-    // point lies outside the open interior of that subtree's box (at the
-    // ancestor where the two part, the median split puts the sibling's points
-    // on or beyond the side of this box): once that interior holds the closed
-    // ball of the best, no point outside the subtree can be better.
-    auto ball_is_inside = [&](const Node& n) {
-      refresh_sphere();
-      if (!ball.bounded) return false;
-      for (int j = 0; j < D; ++j)
-        if (!(n.lo[j] < ball.lo[j] && ball.hi[j] < n.hi[j])) return false;
-      return true;
-    };
-    while (from != 0) {
-      if (best ? ball_is_inside(tree.node(from)) : !clip()) break;
+    search.scan(tree.node(from).begin, tree.node(from).end);
+    // 2. Outwards: walking up, the subtree on the other side of each
+    //    ancestor, until no point outside the subtrees searched can be better.
+    while (from != 0 && search.better_may_lie_outside(tree.node(from))) {
       const Node& parent = tree.node(tree.node(from).parent);
-      const Index sibling = parent.first_child + (parent.first_child == from ? 1 : 0);
-      visit_subtree(sibling, rank, best, may_hold_better, scan);
+      search.visit(parent.first_child + (parent.first_child == from ? 1 : 0));
       from = tree.node(from).parent;
     }
     if (budget_) budget_->charge(stats_.candidates);
-    DEWALL_EXPENSIVE_ASSERT(brute_force_agrees(f, best));
-    return best;
+    DEWALL_EXPENSIVE_ASSERT(brute_force_agrees(f, search.best()));
+    return search.best();
   }
 
   /// True when no point is inside the (perturbed) circumsphere of the
@@ -194,10 +102,7 @@ class Simplex_search {
         if (std::find(s.begin(), s.end(), q) != s.end()) continue;
         if (ball.bounded && !in_box(ball, q)) continue;
         count_candidate();
-        std::optional<bool> inside;
-        if constexpr (kernel::approximate_coordinates_are_exact<K>)
-          inside = ball.bounded ? sphere.inside_box(ps_.coords[q]) : sphere.inside(ps_.coords[q]);
-        if (inside ? *inside : ps_.inside_sphere(s, q)) {
+        if (inside_sphere(s, &sphere, q)) {
           if (budget_) budget_->charge(stats_.candidates);
           return false;
         }
@@ -226,9 +131,7 @@ class Simplex_search {
   /// from faces that are not Delaunay.) O(n): fuzzing only
   /// (DEWALL_EXPENSIVE_CHECKS).
   bool brute_force_agrees(const Face<D>& f, const std::optional<Index>& apex) const {
-    Simplex<D> s;
-    std::copy(f.begin(), f.end(), s.begin());
-    if (apex) s[D] = *apex;
+    const Simplex<D> s = with_apex<D>(f, apex.value_or(f[0]));
     if (apex && ps_.orientation(f, *apex) != kernel::POSITIVE) return false;
     for (Index q = 0; q < static_cast<Index>(ps_.size()); ++q) {
       if (is_vertex(f, q) || q == apex || ps_.orientation(f, q) != kernel::POSITIVE) continue;
@@ -237,31 +140,162 @@ class Simplex_search {
     return true;
   }
 
-  /// Depth first through the subtree at `top`, the child of smaller pencil key
-  /// first while there is no `best`, skipping the nodes `may_hold_better` rules
-  /// out (tested when a node is reached, so the ball found meanwhile applies).
-  template <class May_hold_better, class Scan>
-  void visit_subtree(Index top, const Pencil_rank<D>& rank, const std::optional<Index>& best,
-                     May_hold_better& may_hold_better, Scan& scan) {
-    stack_.assign(1, top);
-    while (!stack_.empty()) {
-      const Node& n = ps_.tree.node(stack_.back());
-      stack_.pop_back();
-      if (!may_hold_better(n)) continue;
-      ++stats_.nodes_visited;
-      if (n.is_leaf()) {
-        scan(n.begin, n.end);
-        continue;
-      }
-      // The nearer child first until there is a best; then its ball prunes, and
-      // ranking both children cost more than it saved (10^5 uniform points: 2.5
-      // against 2.2 CPU seconds, 7 % fewer candidates).
-      const Index c = n.first_child;
-      const bool second_first = !best && rank.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
-                                rank.box_key(ps_.tree.node(c).lo, ps_.tree.node(c).hi);
-      stack_.push_back(second_first ? c : c + 1);  // popped last
-      stack_.push_back(second_first ? c + 1 : c);
+  /// One MakeSimplex(f): the filters of the face, the best apex so far and
+  /// its sphere, and the steps of the search as named functions.
+  class Apex_search {
+   public:
+    Apex_search(Simplex_search& owner, const Face<D>& f)
+        : owner_(owner), ps_(owner.ps_), f_(f), fc_(face_coords(owner.ps_, f)),
+          side_filter_(fc_, ps_.tree.lower(), ps_.tree.upper()), rank_(fc_, side_filter_.normal()),
+          outer_lo_(ps_.tree.lower()), outer_hi_(ps_.tree.upper()) {}
+
+    const std::optional<Index>& best() const { return best_; }
+
+    /// Considers the run of consecutive points [begin, end) (a leaf, or the
+    /// first subtree), the one of smallest pencil rank in the current ball
+    /// first: it is usually the best of the run, so the best changes at most
+    /// once (each change builds a sphere), and its ball prunes the rest.
+    void scan(Index begin, Index end) {
+      Index lead = begin;
+      double lead_rank = std::numeric_limits<double>::infinity();
+      if (rank_.valid())
+        for (Index q = begin; q < end; ++q) {
+          if (best_ && ball_.bounded && !owner_.in_box(ball_, q)) continue;
+          const double t = rank_(ps_.coords[q]);
+          if (t < lead_rank && !is_vertex(f_, q)) {  // a vertex's rank is 0/0 up to rounding
+            lead_rank = t;
+            lead = q;
+          }
+        }
+      consider(lead);
+      refresh_sphere();
+      for (Index q = begin; q < end; ++q) consider(q);
     }
+
+    /// Depth first through the subtree at `top`, the child of smaller pencil
+    /// key first while there is no best, skipping the nodes that cannot hold
+    /// a better point (tested when a node is reached, so the ball found
+    /// meanwhile applies).
+    void visit(Index top) {
+      std::vector<Index>& stack = owner_.stack_;
+      stack.assign(1, top);
+      while (!stack.empty()) {
+        const Node& n = ps_.tree.node(stack.back());
+        stack.pop_back();
+        if (!may_hold_better(n)) continue;
+        ++owner_.stats_.nodes_visited;
+        if (n.is_leaf()) {
+          scan(n.begin, n.end);
+          continue;
+        }
+        // The nearer child first until there is a best; then its ball prunes, and
+        // ranking both children costs more than it saves (docs/engines.md).
+        const Index c = n.first_child;
+        const bool second_first = !best_ && rank_.box_key(ps_.tree.node(c + 1).lo, ps_.tree.node(c + 1).hi) <
+                                  rank_.box_key(ps_.tree.node(c).lo, ps_.tree.node(c).hi);
+        stack.push_back(second_first ? c : c + 1);  // popped last
+        stack.push_back(second_first ? c + 1 : c);
+      }
+    }
+
+    /// Whether a point outside the subtree at n, every point of which has
+    /// been considered, may still be better than the best. Any such point
+    /// lies outside the open interior of n's box (at the ancestor where the
+    /// two part, the median split puts the sibling's points on or beyond the
+    /// side of this box): once that interior holds the closed ball of the
+    /// best, none can be. Without a best, the search goes on while the part
+    /// of the bounding box on the outer side of f is not empty.
+    bool better_may_lie_outside(const Node& n) {
+      if (!best_) return clip();
+      refresh_sphere();
+      if (!ball_.bounded) return true;
+      for (int j = 0; j < D; ++j)
+        if (!(n.lo[j] < ball_.lo[j] && ball_.hi[j] < n.hi[j])) return true;
+      return false;
+    }
+
+   private:
+    /// A candidate replaces the best when it is strictly on the outer side of
+    /// f and inside the sphere of f and the best: exact predicates decide.
+    void consider(Index q) {
+      if (is_vertex(f_, q) || q == best_) return;
+      if (best_ && ball_.bounded && !owner_.in_box(ball_, q)) return;
+      owner_.count_candidate();
+      if (!strictly_outside(q)) return;
+      if (best_ && !owner_.inside_sphere(simplex_, sphere_is_current_ ? &*sphere_ : nullptr, q)) return;
+      best_ = q;
+      simplex_ = with_apex<D>(f_, q);
+      sphere_is_current_ = false;
+    }
+
+    bool strictly_outside(Index q) const {
+      std::optional<kernel::Sign> side;
+      if constexpr (kernel::approximate_coordinates_are_exact<K>) side = side_filter_(ps_.coords[q]);
+      if (!side) side = ps_.orientation(f_, q);
+      return *side == kernel::POSITIVE;
+    }
+
+    // The sphere of the best (its proven filter and ball) is built lazily: a
+    // change of best inside the first leaves is checked by the kernel's
+    // predicate instead, and the older, larger ball still prunes correctly (the
+    // points better than the new best lie inside it, the spheres through f
+    // being nested on the outer side).
+    void refresh_sphere() {
+      if (sphere_is_current_ || !best_) return;
+      sphere_.emplace(owner_.coords_of(simplex_));
+      ball_ = sphere_->enclosing_box();
+      sphere_is_current_ = true;
+    }
+
+    // Far searches (no outer point near the face: a hull face, or one whose
+    // sphere is large) are confined to the part of the bounding box on the
+    // outer side of f, computed when a scan ends without a best. A hull face
+    // whose hyperplane carries other points (a lattice's side) has no such
+    // part: answered without a scan.
+    bool clip() {
+      if (clipped_) return true;
+      clipped_ = true;
+      return side_filter_.clip_to_outer_side(outer_lo_, outer_hi_);
+    }
+
+    bool may_hold_better(const Node& n) {
+      refresh_sphere();
+      if (best_ && !ball_.may_meet(n.lo, n.hi)) return false;  // the test that prunes most, first
+      if (clipped_ && !boxes_meet(n.lo, n.hi, outer_lo_, outer_hi_)) return false;
+      return side_filter_.box_may_hold_outer(n.lo, n.hi);
+    }
+
+    static std::array<const Coords<D>*, D> face_coords(const Point_set<K>& ps, const Face<D>& f) {
+      std::array<const Coords<D>*, D> fc;
+      for (int i = 0; i < D; ++i) fc[i] = &ps.coords[f[i]];
+      return fc;
+    }
+
+    Simplex_search& owner_;
+    const Point_set<K>& ps_;
+    const Face<D>& f_;
+    const std::array<const Coords<D>*, D> fc_;
+    const Face_side_filter<D> side_filter_;
+    const Pencil_rank<D> rank_;
+    std::optional<Index> best_;
+    Simplex<D> simplex_{};  // f and the best
+    std::optional<Simplex_sphere<D>> sphere_;
+    bool sphere_is_current_ = false;
+    Ball_box<D> ball_;
+    Coords<D> outer_lo_, outer_hi_;
+    bool clipped_ = false;
+  };
+
+  /// Whether q is inside the (perturbed) sphere of s: decided by the proven
+  /// filter of `sphere` (the sphere of s, when given) when the kernel's
+  /// approximate coordinates are its exact ones, else (or when the filter
+  /// cannot tell) by the kernel's predicate.
+  bool inside_sphere(const Simplex<D>& s, const Simplex_sphere<D>* sphere, Index q) const {
+    std::optional<bool> inside;
+    if constexpr (kernel::approximate_coordinates_are_exact<K>)
+      if (sphere)
+        inside = sphere->enclosing_box().bounded ? sphere->inside_box(ps_.coords[q]) : sphere->inside(ps_.coords[q]);
+    return inside ? *inside : ps_.inside_sphere(s, q);
   }
 
   std::array<const Coords<D>*, D + 1> coords_of(const Simplex<D>& s) const {
@@ -291,7 +325,7 @@ class Simplex_search {
   std::optional<Search_budget> budget_;
   std::vector<Index> stack_;  // scratch: the nodes still to visit
   // The first subtree scanned: fewer points make the first best worse (more
-  // changes of best), more make the scan longer; measured on 10^5 uniform 3D points.
+  // changes of best), more make the scan longer (docs/engines.md).
   static constexpr Index near_points = 16;
   Search_stats stats_;
 };

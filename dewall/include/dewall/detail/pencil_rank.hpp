@@ -6,7 +6,7 @@
 //   t_q = (|q − c_f|² − r_f²) / (2 (q − c_f)·n) = (|x|² − 2 x·w) / (2 x·n),
 // with x = q − f_0 and w = c_f − f_0 (c_f − f_0 ⟂ n and r_f = |w|). The apex of
 // the Delaunay simplex on the outer side is the outer point of smallest t_q
-// (performance model of DESIGN.md). Computed in floating point, it only
+// (the pencil of spheres through f: the paper's dd metric as one parameter). Computed in floating point, it only
 // chooses which candidate the exact search tries first.
 #pragma once
 

@@ -45,7 +45,7 @@ class Simplex_output {
 /// The simplices of parallel tasks, passed on to one Simplex_output under a
 /// lock. A held stream keeps them until release(): Engine::automatic may still
 /// hand over to the incremental engine, and what was passed on could not be
-/// taken back (search_budget.hpp, Handover_decision). Held simplices are kept
+/// taken back (handover_rule.hpp, Handover_decision). Held simplices are kept
 /// in the blocks they came in (no growing array whose reallocation doubles
 /// the peak).
 template <int D>

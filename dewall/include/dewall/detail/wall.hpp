@@ -1,12 +1,18 @@
-// The DeWall recursion (the paper's procedure DeWall(P, AFL)).
+// The DeWall recursion (the paper's procedure DeWall(P, AFL)), Wall_builder::recurse.
 //
-//  1. Split P by α (split.hpp) into P1 and P2.
-//  2. At the top level (empty AFL): a first simplex crossed by α (first_simplex.hpp).
-//  3. Sort the AFL into AFL_α (faces crossed by α), AFL_1 and AFL_2.
+//  1. Split P by α (split.hpp) into P1 and P2: split_points.
+//  2. At the top level (empty AFL): a first simplex crossed by α
+//     (first_simplex.hpp): build_wall.
+//  3. Sort the AFL into AFL_α (faces crossed by α), AFL_1 and AFL_2
+//     (Face_lists): build_wall.
 //  4. While AFL_α is not empty: take a face, build the simplex on its outer side
 //     (make_simplex.hpp), emit it, and Update its other faces into the list of
-//     their class.
-//  5. Recurse on (P1, AFL_1) and (P2, AFL_2); near the top, on separate cores.
+//     their class: wall_loop.
+//  5. Recurse on (P1, AFL_1) and (P2, AFL_2); near the top, on separate cores:
+//     recurse_on_halves.
+// With regions (Engine::hybrid, automatic), a subproblem may instead be
+// triangulated as a region (region.hpp, triangulate_region), and finish
+// gift-wraps, with the same wall_loop, the faces the regions left open.
 // Below the top level an empty AFL ends the recursion: every simplex lying in
 // P1 shares a face with the wall or with another such simplex (the region they
 // cover is bounded by wall simplices and the hull), so none is missed. The
@@ -14,7 +20,7 @@
 // need not lie in P1: the simplex on the face's outer side may reach a point a
 // deeper wall put on the other side (fuzz finding 165dddcd). Nothing depends on
 // where the apex lies — Update closes each face once, whichever task sees it
-// — but a subproblem's faces can then outlive its points; recurse() splits the
+// — but a subproblem's faces can then outlive its points; split_points splits the
 // points together with the faces' vertices in that case.
 //
 // Collected, the output order is the depth-first order (wall, then P1's
@@ -30,12 +36,13 @@
 #include <algorithm>
 #include <mutex>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/first_simplex.hpp"
 #include "dewall/detail/region.hpp"
-#include "dewall/detail/search_budget.hpp"
+#include "dewall/detail/handover_rule.hpp"
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
@@ -56,7 +63,7 @@ class Wall_builder {
  public:
   /// parallel_depth: recursion levels whose two subproblems run as parallel
   /// tasks (0: serial). budget: when given, each task's searches are charged
-  /// to a copy of it (search_budget.hpp).
+  /// to a copy of it (handover_rule.hpp).
   /// regions: when given, a subproblem of at most region_points points is
   /// triangulated by it instead of by more walls (region.hpp).
   /// decision: when given (streaming with a budget), settled by the first
@@ -71,147 +78,216 @@ class Wall_builder {
   /// flushes it when it streams).
   /// \throws Search_budget_spent when a task's budget is spent.
   void run(std::span<Index> points, Built_simplices<D>& out) {
-    Simplex_search<K> search(ps_, budget_);
-    Wall_stats stats;
     std::vector<Face<D>> open_faces;
-    recurse(points, Active_face_list<D>{}, Region_bounds<D>{}, 0, true, true, out, open_faces, search, stats);
-    finish(open_faces, out, search, stats);
+    Task task(ps_, budget_, out, open_faces);
+    recurse(Subproblem{points, {}, {}, 0, true}, task);
+    finish(open_faces, task);
     out.flush();
-    merge(search.stats(), stats);
+    merge(task);
   }
 
   const Wall_stats& stats() const { return stats_; }
   const Search_stats& search_stats() const { return search_stats_; }
 
  private:
-  /// bounds: the open box the walls above leave to `points` (region.hpp);
-  /// regions_apply: a region may triangulate `points`: it is exactly the set
-  /// the walls above leave (not extended with faces' vertices, below), and no
-  /// region above it was flat (a subset of a set that does not span E^D does
-  /// not either: two planes, the paper's Figure 7, split into flat halves
-  /// below the wall between them, and trying each level again cost 2× DeWall's
-  /// whole time). Faces left open by a region go to open_faces.
-  void recurse(std::span<Index> points, Active_face_list<D> afl, const Region_bounds<D>& bounds, std::size_t depth,
-               bool top, bool regions_apply, Built_simplices<D>& out, std::vector<Face<D>>& open_faces,
-               Simplex_search<K>& search, Wall_stats& stats) {
-    if (!top && afl.empty()) return;
-    stats.max_depth = std::max(stats.max_depth, depth);
-    if (!top && regions_apply && regions_ && points.size() <= region_points_) {
-      if (triangulate_region(points, afl, bounds, depth, out, open_faces, search, stats)) return;
-      regions_apply = false;  // flat
+  /// The paper's DeWall(P, AFL): a set of points and the active faces on them.
+  struct Subproblem {
+    std::span<Index> points;
+    Active_face_list<D> afl;
+    /// The open box the walls above leave to `points` (region.hpp).
+    Region_bounds<D> bounds;
+    std::size_t depth = 0;
+    /// A region may triangulate `points`: it is exactly the set the walls
+    /// above leave (not extended with faces' vertices, split_points), and no
+    /// region above it was flat (a subset of a set that does not span E^D does
+    /// not either: two planes, the paper's Figure 7, split into flat halves
+    /// below the wall between them, and trying each level again costs more
+    /// than DeWall's whole run).
+    bool regions_apply = true;
+  };
+
+  /// What one task of the recursion owns: its search (charged to its own copy
+  /// of the budget), its output block, its counters, and the faces its regions
+  /// leave open (for finish).
+  struct Task {
+    Task(const Point_set<K>& ps, const std::optional<Search_budget>& budget, Built_simplices<D>& o,
+         std::vector<Face<D>>& open)
+        : search(ps, budget), out(o), open_faces(open) {}
+    Simplex_search<K> search;
+    Built_simplices<D>& out;
+    std::vector<Face<D>>& open_faces;
+    Wall_stats stats;
+  };
+
+  /// α and the partition of a subproblem's points: P1 is the first side1_size.
+  struct Cut {
+    Split<D> split;
+    std::size_t side1_size;
+  };
+
+  /// The paper's AFL_α, AFL_1 and AFL_2 for one split; a face goes to the list
+  /// of its class.
+  struct Face_lists {
+    const std::vector<Coords<D>>& coords;
+    const Split<D>& split;
+    Active_face_list<D> wall, side1, side2;
+    Active_face_list<D>& operator()(const Face<D>& f) {
+      int n1 = 0;
+      for (Index v : f) n1 += split.on_side1(coords[v]);
+      return n1 == D ? side1 : n1 == 0 ? side2 : wall;
     }
-    std::size_t side1_size = 0;
-    auto split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
-    // A simplex found for a face of this region may have a vertex outside it (the
-    // search is global; fuzz finding 165dddcd: a region {3, 4} whose face got
-    // apex 2 from the sibling region), so a region's faces can outlive its
-    // points. When the points alone cannot be split, split them together with
-    // the faces' vertices: any split is correct, Update still closes each face once.
-    std::vector<Index> extended;
-    if (!split) {
-      std::vector<Face<D>> faces;
-      while (!afl.empty()) faces.push_back(afl.pop());
-      extended.assign(points.begin(), points.end());
-      for (const auto& f : faces) extended.insert(extended.end(), f.begin(), f.end());
-      std::sort(extended.begin(), extended.end());
-      extended.erase(std::unique(extended.begin(), extended.end()), extended.end());
-      for (const auto& f : faces) afl.update(f);
-      points = std::span<Index>(extended);
-      split = choose_split<D>(points, ps_.coords, static_cast<int>(depth % D), side1_size);
-      regions_apply = false;
-    }
-    DEWALL_ASSERT(split.has_value());  // faces need two distinct points
+  };
+
+  /// DeWall(P, AFL): a region if one applies, else the split (step 1), the
+  /// wall (steps 2–4) and the two halves (step 5).
+  void recurse(Subproblem p, Task& task) {
+    if (p.depth > 0 && p.afl.empty()) return;
+    task.stats.max_depth = std::max(task.stats.max_depth, p.depth);
+    if (region_may_take(p) && p.points.size() <= region_points_ && as_region(p, task)) return;
+    std::vector<Index> extended;  // (split_points: the points with the faces' vertices)
+    const Cut cut = split_points(p, extended);
     // A half on one axis-parallel plane has no simplex of its own: two layers
     // (the paper's Figure 7) leave them all to this wall, built at DeWall's
-    // speed on one core (2.4× CGAL's time at 10^5 points). A region of any
-    // size does the same work at CGAL's.
-    if (!top && regions_apply && regions_ &&
-        (on_one_axis_plane(points.first(side1_size)) || on_one_axis_plane(points.subspan(side1_size)))) {
-      if (triangulate_region(points, afl, bounds, depth, out, open_faces, search, stats)) return;
-      regions_apply = false;
+    // speed on one core. A region of any size does the same work at the
+    // incremental construction's speed.
+    if (region_may_take(p) &&
+        (on_one_axis_plane(p.points.first(cut.side1_size)) || on_one_axis_plane(p.points.subspan(cut.side1_size))) &&
+        as_region(p, task))
+      return;
+    auto [half1, half2] = build_wall(p, cut, task);
+    recurse_on_halves(std::move(half1), std::move(half2), task);
+  }
+
+  /// Step 1: α on axis depth mod D, P partitioned in place into P1 and P2.
+  /// A simplex found for a face of this subproblem may have a vertex outside it
+  /// (the search is global; fuzz finding 165dddcd: a region {3, 4} whose face
+  /// got apex 2 from the sibling region), so its faces can outlive its points.
+  /// When the points alone cannot be split, they are split together with the
+  /// faces' vertices, kept in `extended`: any split is correct, Update still
+  /// closes each face once.
+  Cut split_points(Subproblem& p, std::vector<Index>& extended) const {
+    const int axis = static_cast<int>(p.depth % D);
+    Cut cut{};
+    if (auto split = choose_split<D>(p.points, ps_.coords, axis, cut.side1_size)) {
+      cut.split = *split;
+      return cut;
     }
-    Active_face_list<D> wall, afl1, afl2;
-    auto classify = [&](const Face<D>& f) -> Active_face_list<D>& {
-      int n1 = 0;
-      for (Index v : f) n1 += split->on_side1(ps_.coords[v]);
-      return n1 == D ? afl1 : n1 == 0 ? afl2 : wall;
-    };
-    const std::size_t before = out.size();
-    auto add = [&](const Simplex<D>& s, int skip) {
-      emit(out, s, depth);
-      for (int i = 0; i <= D; ++i)
-        if (i != skip) {
-          const Face<D> g = opposite_face<D>(s, i);
-          classify(g).update(g);
-        }
-    };
-    if (top) add(first_simplex(ps_, search, points, *split), -1);
-    while (!afl.empty()) {
-      const Face<D> f = afl.pop();
-      classify(f).update(f);
+    std::vector<Face<D>> faces;
+    while (!p.afl.empty()) faces.push_back(p.afl.pop());
+    extended.assign(p.points.begin(), p.points.end());
+    for (const auto& f : faces) extended.insert(extended.end(), f.begin(), f.end());
+    std::sort(extended.begin(), extended.end());
+    extended.erase(std::unique(extended.begin(), extended.end()), extended.end());
+    for (const auto& f : faces) p.afl.update(f);
+    p.points = std::span<Index>(extended);
+    p.regions_apply = false;
+    const auto split = choose_split<D>(p.points, ps_.coords, axis, cut.side1_size);
+    DEWALL_ASSERT(split.has_value());  // faces need two distinct points
+    cut.split = *split;
+    return cut;
+  }
+
+  /// Steps 2–4: at the top the first simplex; the AFL sorted into AFL_α, AFL_1
+  /// and AFL_2; the wall built from AFL_α. Returns (P1, AFL_1) and (P2, AFL_2).
+  std::pair<Subproblem, Subproblem> build_wall(Subproblem& p, const Cut& cut, Task& task) {
+    Face_lists lists{ps_.coords, cut.split, {}, {}, {}};
+    const std::size_t before = task.out.size();
+    if (p.depth == 0) add_simplex(first_simplex(ps_, task.search, p.points, cut.split), -1, 0, lists, task);
+    while (!p.afl.empty()) {
+      const Face<D> f = p.afl.pop();
+      lists(f).update(f);
     }
-    while (!wall.empty()) {
-      const Face<D> f = wall.pop();
-      const auto apex = search.make_simplex(f);
-      if (!apex) continue;  // a convex hull face
-      Simplex<D> s;
-      std::copy(f.begin(), f.end(), s.begin());
-      s[D] = *apex;
-      add(s, D);
+    wall_loop(lists.wall, p.depth, lists, task);
+    task.stats.simplices += task.out.size() - before;
+    if (p.depth == 0) task.stats.first_wall_simplices = task.out.size() - before;
+    const Split<D>& a = cut.split;
+    return {Subproblem{p.points.first(cut.side1_size), std::move(lists.side1), p.bounds.cut(a.axis, a.value, true),
+                       p.depth + 1, p.regions_apply},
+            Subproblem{p.points.subspan(cut.side1_size), std::move(lists.side2), p.bounds.cut(a.axis, a.value, false),
+                       p.depth + 1, p.regions_apply}};
+  }
+
+  /// The wall loop (the paper's step 4), for a wall and for finish: while
+  /// `faces` holds one, the simplex on its outer side (none for a hull face)
+  /// is emitted at wall level `level` and its other faces are Updated into
+  /// the list `list_of(face)` names.
+  template <class List_of>
+  void wall_loop(Active_face_list<D>& faces, std::size_t level, List_of& list_of, Task& task) {
+    while (!faces.empty()) {
+      const Face<D> f = faces.pop();
+      if (const auto apex = task.search.make_simplex(f)) add_simplex(with_apex<D>(f, *apex), D, level, list_of, task);
     }
-    stats.simplices += out.size() - before;
-    if (top) stats.first_wall_simplices = out.size() - before;
-    const auto p1 = points.first(side1_size), p2 = points.subspan(side1_size);
-    const Region_bounds<D> b1 = bounds.cut(split->axis, split->value, true);
-    const Region_bounds<D> b2 = bounds.cut(split->axis, split->value, false);
-    if (static_cast<int>(depth) < parallel_depth_ && !afl1.empty() && !afl2.empty()) {
-      // Streaming: this task's simplices go before its subproblems'.
-      out.flush();
-      Built_simplices<D> out1(out.stream()), out2(out.stream());
-      std::vector<Face<D>> open1, open2;
-      auto task = [&](std::span<Index> p, Active_face_list<D>& a, const Region_bounds<D>& b, Built_simplices<D>& o,
-                      std::vector<Face<D>>& open) {
-        // A worker thread has its own floating-point environment (floating_point.hpp).
-        const kernel::Fp_environment_guard guard;
-        Simplex_search<K> s(ps_, budget_);
-        Wall_stats st;
-        recurse(p, std::move(a), b, depth + 1, false, regions_apply, o, open, s, st);
-        o.flush();
-        merge(s.stats(), st);
-      };
-      // The same tasks (and budgets) on one thread, in output order: a stream
-      // then has the collected order.
-      if (tbb::this_task_arena::max_concurrency() == 1) {
-        task(p1, afl1, b1, out1, open1);
-        task(p2, afl2, b2, out2, open2);
-      } else {
-        tbb::parallel_invoke([&] { task(p1, afl1, b1, out1, open1); }, [&] { task(p2, afl2, b2, out2, open2); });
+  }
+
+  /// Emits s and Updates its faces other than the one opposite vertex
+  /// `known` (the face it was built on; −1: none) into their lists.
+  template <class List_of>
+  void add_simplex(const Simplex<D>& s, int known, std::size_t level, List_of& list_of, Task& task) {
+    emit(task.out, s, level);
+    for (int i = 0; i <= D; ++i)
+      if (i != known) {
+        const Face<D> g = opposite_face<D>(s, i);
+        list_of(g).update(g);
       }
-      out.append(std::move(out1));
-      out.append(std::move(out2));
-      open_faces.insert(open_faces.end(), open1.begin(), open1.end());
-      open_faces.insert(open_faces.end(), open2.begin(), open2.end());
-    } else {
-      recurse(p1, std::move(afl1), b1, depth + 1, false, regions_apply, out, open_faces, search, stats);
-      recurse(p2, std::move(afl2), b2, depth + 1, false, regions_apply, out, open_faces, search, stats);
+  }
+
+  /// Step 5: (P1, AFL_1), then (P2, AFL_2); near the top, while both have
+  /// faces, as two parallel tasks with their own output blocks, appended in
+  /// that order.
+  void recurse_on_halves(Subproblem half1, Subproblem half2, Task& task) {
+    // (the halves' parent is parallel when its depth, half1.depth − 1, is below parallel_depth)
+    if (static_cast<int>(half1.depth) > parallel_depth_ || half1.afl.empty() || half2.afl.empty()) {
+      recurse(std::move(half1), task);
+      recurse(std::move(half2), task);
+      return;
     }
+    // Streaming: this task's simplices go before its subproblems'.
+    task.out.flush();
+    Built_simplices<D> out1(task.out.stream()), out2(task.out.stream());
+    std::vector<Face<D>> open1, open2;
+    auto run_task = [&](Subproblem& half, Built_simplices<D>& out, std::vector<Face<D>>& open) {
+      // A worker thread has its own floating-point environment (floating_point.hpp).
+      const kernel::Fp_environment_guard guard;
+      Task t(ps_, budget_, out, open);
+      recurse(std::move(half), t);
+      out.flush();
+      merge(t);
+    };
+    // The same tasks (and budgets) on one thread, in output order: a stream
+    // then has the collected order.
+    if (tbb::this_task_arena::max_concurrency() == 1) {
+      run_task(half1, out1, open1);
+      run_task(half2, out2, open2);
+    } else {
+      tbb::parallel_invoke([&] { run_task(half1, out1, open1); }, [&] { run_task(half2, out2, open2); });
+    }
+    task.out.append(std::move(out1));
+    task.out.append(std::move(out2));
+    task.open_faces.insert(task.open_faces.end(), open1.begin(), open1.end());
+    task.open_faces.insert(task.open_faces.end(), open2.begin(), open2.end());
+  }
+
+  /// Whether a region may take p instead of more walls: below the top, with
+  /// regions on (Engine::hybrid, automatic), and allowed there.
+  bool region_may_take(const Subproblem& p) const { return p.depth > 0 && p.regions_apply && regions_; }
+
+  /// p as a region (triangulate_region); when its points do not span E^D,
+  /// false, and no region applies below it.
+  bool as_region(Subproblem& p, Task& task) {
+    if (triangulate_region(p, task)) return true;
+    p.regions_apply = false;
+    return false;
   }
 
   /// The simplices of DT(points) whose spheres hold no other point of the
   /// input (region.hpp), emitted in the order the triangulator lists them; the
   /// faces where they meet no other of them Update the region's AFL, and what
   /// is left open goes to open_faces. False when the points do not span E^D.
-  bool triangulate_region(std::span<Index> points, Active_face_list<D>& afl, const Region_bounds<D>& bounds,
-                          std::size_t depth, Built_simplices<D>& out, std::vector<Face<D>>& open_faces,
-                          Simplex_search<K>& search, Wall_stats& stats) {
+  bool triangulate_region(Subproblem& p, Task& task) {
     // Known not to span E^D without building the triangulator's lower-dimensional one.
-    if (on_one_axis_plane(points)) return false;
-    // The automatic engine hands over when a region saves no search: when
-    // most of its cells' spheres leave it, each of those needs the exact
-    // search, and the region costs CGAL's work plus DeWall's. Measured share of
-    // such cells per region (10^5 points): two layers 62 %; uniform, ball,
-    // bubbles, eight layers 3–7 %; 2D 1 %. Decided as soon as the share passes
-    // a quarter (the count only grows, so the decision is the same).
+    if (on_one_axis_plane(p.points)) return false;
+    // With a budget, the automatic engine hands over when a region saves no
+    // search (handover_rule.hpp, Region_handover).
     struct Filter final : Region_filter<D> {
       Wall_builder& builder;
       const Region_bounds<D>& bounds;
@@ -219,15 +295,13 @@ class Wall_builder {
       Built_simplices<D>& out;
       Simplex_search<K>& search;
       std::size_t depth;
-      std::size_t cells = 0, sphere_tests = 0;
-      bool may_hand_over = false;
+      Region_handover handover;
 
       Filter(Wall_builder& b, const Region_bounds<D>& bo, Active_face_list<D>& a, Built_simplices<D>& o,
              Simplex_search<K>& s, std::size_t d)
           : builder(b), bounds(bo), afl(a), out(o), search(s), depth(d) {}
       void begin(std::size_t count) override {
-        cells = count;
-        may_hand_over = search.charges_budget() && count >= min_cells_for_handover;
+        handover = Region_handover(search.charges_budget(), count);
       }
       bool empty_of_others(const Simplex<D>& s) override {
         const Simplex_sphere<D> sphere = search.sphere_of(s);
@@ -238,7 +312,7 @@ class Wall_builder {
         // the walls' searches do.)
         if (ball.bounded && bounds.strictly_contains(ball.lo, ball.hi)) return true;
         const bool empty = search.is_empty_sphere(s, sphere);
-        if (may_hand_over && 4 * ++sphere_tests > cells) search.hand_over();
+        if (handover.searched_one()) search.hand_over();
         return empty;
       }
       void keep(const Simplex<D>& s, unsigned open) override {
@@ -246,36 +320,27 @@ class Wall_builder {
         for (int i = 0; i <= D; ++i)
           if (open >> i & 1u) afl.update(opposite_face<D>(s, i));
       }
-    } filter(*this, bounds, afl, out, search, depth);
-    const std::size_t before = out.size();
-    if (!(*regions_)(points, ps_.coords, filter)) return false;
-    while (!afl.empty()) open_faces.push_back(afl.pop());
-    stats.simplices += out.size() - before;
-    stats.region_simplices += out.size() - before;
+    } filter(*this, p.bounds, p.afl, task.out, task.search, p.depth);
+    const std::size_t before = task.out.size();
+    if (!(*regions_)(p.points, ps_.coords, filter)) return false;
+    while (!p.afl.empty()) task.open_faces.push_back(p.afl.pop());
+    task.stats.simplices += task.out.size() - before;
+    task.stats.region_simplices += task.out.size() - before;
     // Streaming: a region kept means the hybrid works on this input.
-    if (decision_ && decision_->settle() && out.stream()) out.stream()->release();
+    if (decision_ && decision_->settle() && task.out.stream()) task.out.stream()->release();
     return true;
   }
 
   /// Gift-wrapping from the faces the regions left open: hull faces (no
   /// apex), and the faces of any simplex that crosses a wall but that no
   /// wall reached. Serial, after every region, in a fixed order.
-  void finish(const std::vector<Face<D>>& open_faces, Built_simplices<D>& out, Simplex_search<K>& search,
-              Wall_stats& stats) {
+  void finish(const std::vector<Face<D>>& open_faces, Task& task) {
     Active_face_list<D> afl;
     for (const Face<D>& f : open_faces) afl.update(f);
-    const std::size_t before = out.size();
-    while (!afl.empty()) {
-      const Face<D> f = afl.pop();
-      const auto apex = search.make_simplex(f);
-      if (!apex) continue;
-      Simplex<D> s;
-      std::copy(f.begin(), f.end(), s.begin());
-      s[D] = *apex;
-      emit(out, s, 0);
-      for (int i = 0; i < D; ++i) afl.update(opposite_face<D>(s, i));
-    }
-    stats.simplices += out.size() - before;
+    auto same_list = [&](const Face<D>&) -> Active_face_list<D>& { return afl; };
+    const std::size_t before = task.out.size();
+    wall_loop(afl, 0, same_list, task);
+    task.stats.simplices += task.out.size() - before;
   }
 
   /// Whether the points share one coordinate (a layer, a lattice's side); exact.
@@ -293,7 +358,9 @@ class Wall_builder {
     out.push_back({input, static_cast<std::uint8_t>(std::min<std::size_t>(level, 255))});
   }
 
-  void merge(const Search_stats& s, const Wall_stats& w) {
+  void merge(const Task& task) {
+    const Search_stats& s = task.search.stats();
+    const Wall_stats& w = task.stats;
     const std::lock_guard lock(mutex_);
     search_stats_.searches += s.searches;
     search_stats_.nodes_visited += s.nodes_visited;
@@ -307,9 +374,6 @@ class Wall_builder {
   const Point_set<K>& ps_;
   int parallel_depth_;
   std::optional<Search_budget> budget_;
-  // Regions smaller than this are never a reason to hand over (a few hull
-  // cells are a large share of a small region).
-  static constexpr std::size_t min_cells_for_handover = 4096;
   const Region_triangulator<D>* regions_;
   std::size_t region_points_;
   Handover_decision* decision_;

@@ -1,6 +1,13 @@
-// Search_budget: what Engine::automatic measures of DeWall's cost (options.hpp).
+// The hand-over rule of Engine::automatic: when the walls give up for an
+// incremental construction (dewall/src/automatic_engine.hpp applies it).
+//  * Search_budget: what DeWall's searches cost, charged by every search
+//    (make_simplex.hpp: begin_search, charge) in candidates and slow-path
+//    predicate evaluations (kernel/predicate_stats.hpp, slow_path_counts);
+//    spent when the cost per search passes Options::handover_candidates_per_search.
+//  * Region_handover: a region of the hybrid that saves no search (wall.hpp).
+//  * Handover_decision: streaming decides once, for all tasks.
 // Integer bookkeeping only: it never touches the triangulation, it only stops
-// DeWall.
+// DeWall. The figures behind the constants: docs/engines.md.
 //
 // One budget per Simplex_search, and so per task of the recursion: the tasks
 // are fixed by the points (Options::parallel_depth), not by the threads, and
@@ -44,14 +51,40 @@ class Handover_decision {
   std::atomic<State> state_{open};
 };
 
+/// The automatic engine's rule for one region (wall.hpp, triangulate_region):
+/// hand over when a region saves no search. A region's gain is that most of
+/// its cells are kept without the exact emptiness search; when more than a
+/// quarter of them need it (their spheres leave the region: two parallel
+/// layers), the region costs the incremental construction's work plus
+/// DeWall's. Decided as soon as the share passes a quarter (the count only
+/// grows, so the decision is the same). Regions of fewer than
+/// `min_cells` cells never hand over: a few hull cells are a large share of a
+/// small region. docs/engines.md has the measured shares.
+class Region_handover {
+ public:
+  static constexpr std::size_t min_cells = 4096;
+
+  Region_handover() = default;
+  /// A region of `cells` cells; `charged`: its searches are charged to a
+  /// budget (Engine::automatic).
+  Region_handover(bool charged, std::size_t cells) : applies_(charged && cells >= min_cells), cells_(cells) {}
+
+  /// One more of the region's cells needed the emptiness search; true when
+  /// the region saves no search.
+  bool searched_one() { return applies_ && 4 * ++searched_ > cells_; }
+
+ private:
+  bool applies_ = false;
+  std::size_t cells_ = 0, searched_ = 0;
+};
+
 class Search_budget {
  public:
   /// The cost of a predicate evaluation the filters left to the interval or
-  /// the exact stage, in candidates (one candidate, examined with the filters
-  /// deciding: about 20 ns). bench_predicates, side_of_sphere 2D / 3D: filter
-  /// 4.6 / 9.9 ns, exact 0.9–1.3 / 2.1–2.7 µs. On points on one circle or
-  /// sphere nearly every test goes to the exact stage: counting candidates
-  /// alone let DeWall spend 2–4× CGAL's whole time before handing over.
+  /// the exact stage, in candidates (one candidate is examined with the
+  /// filters deciding): the stages' measured cost ratios (docs/engines.md). On
+  /// points on one circle or sphere nearly every test goes to the exact stage,
+  /// so counting candidates alone would let DeWall run far too long.
   static constexpr std::size_t interval_cost = 10, exact_cost = 100;
 
   /// per_search: Options::handover_candidates_per_search; n: the number of
@@ -75,12 +108,10 @@ class Search_budget {
   /// \throws Search_budget_spent once the cost exceeds per_search × searches +
   /// 64 × per_search + 4^(d−2) × n: an allowance for a few costly searches
   /// (near the hull, and the first simplex's, whose attempts on faces that are
-  /// not Delaunay have large spheres: 4.5·10^4 candidates on 3·10^4 uniform 4D
-  /// points) and a few looks at every point. 4^(d−2) × n candidates cost 2 %
-  /// of CGAL's time or less (its cost per point grows faster with d: 0.8, 4
-  /// and 60 µs in 2D, 3D and 4D here); on one circle or sphere they are
-  /// n / 100 exact tests in 2D. Called during long searches too, so one
-  /// search of a sphere's points does not run to its end.
+  /// not Delaunay have large spheres) and a few looks at every point, small
+  /// beside the incremental construction's time (docs/engines.md). Called
+  /// during long searches too, so one search of a sphere's points does not run
+  /// to its end.
   void charge(std::size_t candidates) {
     if (settled_) return;
     const kernel::Slow_path_counts& now = kernel::slow_path_counts();
