@@ -16,6 +16,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "dewall/detail/face.hpp"
+
 namespace dewall::cgal::detail {
 
 /// An open-addressing hash table from facet keys (D sorted vertex ids) to the
@@ -86,15 +88,7 @@ class Facet_matcher {
 
   std::size_t mask() const { return slots_.size() - 1; }
 
-  static std::size_t hash(const Key& k) {
-    std::uint64_t h = 0x9e3779b97f4a7c15ull;
-    for (std::uint32_t v : k) {
-      h ^= v;
-      h *= 0xff51afd7ed558ccdull;
-      h ^= h >> 32;
-    }
-    return static_cast<std::size_t>(h);
-  }
+  static std::size_t hash(const Key& k) { return static_cast<std::size_t>(dewall::detail::face_hash<D>(k)); }
 
   // Backward-shift deletion for linear probing: move later members of the
   // run into the hole when their home slot does not lie cyclically in (hole, j].
