@@ -43,24 +43,24 @@ namespace dewall::detail {
 /// (D·bits ≤ 64).
 template <int D>
 std::uint64_t hilbert_index(std::array<std::uint32_t, D> x, int bits) {
-  // Axes to transposed index: undo the excess work of the Gray code.
+  // Axes to transposed index: undo the excess work of the Gray code. When
+  // bit q of axis i is set, invert the low bits of the first axis, else
+  // exchange the low bits of the two; written with masks, not branches (the
+  // bits are the points' and a branch on them mispredicts half the time).
   for (std::uint32_t q = std::uint32_t{1} << (bits - 1); q > 1; q >>= 1) {
     const std::uint32_t p = q - 1;
     for (int i = 0; i < D; ++i) {
-      if (x[i] & q) {
-        x[0] ^= p;  // invert the low bits of the first axis
-      } else {
-        const std::uint32_t t = (x[0] ^ x[i]) & p;  // exchange the low bits
-        x[0] ^= t;
-        x[i] ^= t;
-      }
+      const std::uint32_t set = 0u - static_cast<std::uint32_t>((x[i] & q) != 0);  // all ones or zero
+      const std::uint32_t t = (x[0] ^ x[i]) & p & ~set;
+      x[0] ^= (p & set) | t;
+      x[i] ^= t;
     }
   }
   // Gray encode.
   for (int i = 1; i < D; ++i) x[i] ^= x[i - 1];
   std::uint32_t t = 0;
   for (std::uint32_t q = std::uint32_t{1} << (bits - 1); q > 1; q >>= 1)
-    if (x[D - 1] & q) t ^= q - 1;
+    t ^= (q - 1) & (0u - static_cast<std::uint32_t>((x[D - 1] & q) != 0));
   for (int i = 0; i < D; ++i) x[i] ^= t;
   // Interleave: bit b of axis i is bit b·D + (D − 1 − i) of the index.
   std::uint64_t index = 0;
