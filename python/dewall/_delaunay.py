@@ -77,6 +77,18 @@ def _check_threads(threads):
     return min(threads, max(available, 1))
 
 
+def _with_added_points(obj, points, what):
+    """add_points' checks (scipy's: incremental mode, not closed; masked arrays refused; the
+    object's dimension), then obj.points followed by the new points."""
+    if not obj._incremental or obj._closed:
+        raise RuntimeError("incremental mode not enabled or already closed")
+    _refuse_masked(points, "Input points")
+    new = as_coordinates(points)
+    if new.shape[1] != obj.ndim:
+        raise ValueError(f"the new points have dimension {new.shape[1]}, {what} {obj.ndim}")
+    return np.concatenate((obj.points, new))
+
+
 def _refuse_masked(values, what):
     if isinstance(values, np.ma.MaskedArray):
         raise ValueError(f"{what} cannot be a masked array")
@@ -482,13 +494,7 @@ class Delaunay:
         """Adds points (shape (k, ndim)); needs incremental=True and no close() yet (else
         RuntimeError, as scipy). dewall re-triangulates all the points (restart changes nothing):
         the simplices are those of Delaunay(all points), exactly."""
-        if not self._incremental or self._closed:
-            raise RuntimeError("incremental mode not enabled or already closed")
-        _refuse_masked(points, "Input points")
-        new = as_coordinates(points)
-        if new.shape[1] != self.ndim:
-            raise ValueError(f"the new points have dimension {new.shape[1]}, the triangulation {self.ndim}")
-        self._build(np.concatenate((self.points, new)))
+        self._build(_with_added_points(self, points, "the triangulation"))
 
     def close(self):
         """Ends incremental mode (scipy frees Qhull's memory here); add_points then raises."""

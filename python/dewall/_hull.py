@@ -16,7 +16,7 @@ from ._arrays import as_coordinates
 from ._errors import InvalidOption
 from ._boundary import extreme_hull_edges_2d, extreme_ring_2d, merge_flat_faces_3d, ridge_pairs
 from ._delaunay import (Delaunay, _check_qhull_options, _check_threads, _determinants, _option_in_effect,
-                        _refuse_masked)
+                        _refuse_masked, _with_added_points)
 
 __all__ = ["ConvexHull", "Voronoi"]
 
@@ -99,13 +99,7 @@ class ConvexHull:
 
     def add_points(self, points, restart=False):
         """As scipy: needs incremental=True and no close(); dewall recomputes from all the points."""
-        if not self._incremental or self._closed:
-            raise RuntimeError("incremental mode not enabled or already closed")
-        _refuse_masked(points, "Input points")
-        new = as_coordinates(points)
-        if new.shape[1] != self.ndim:
-            raise ValueError(f"the new points have dimension {new.shape[1]}, the hull {self.ndim}")
-        self._build(np.concatenate((self.points, new)))
+        self._build(_with_added_points(self, points, "the hull"))
 
     def close(self):
         self._closed = True

@@ -240,17 +240,27 @@ class Incremental_delaunay {
 
   /// Orientation of cell c (finite) with vertex `replaced` (−1: none) replaced by q.
   kernel::Sign orientation(std::size_t c, int replaced, const Point* q) const {
-    kernel::Point_refs<D, D + 1> refs;
-    for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c].v[k]];
+    const auto refs = orientation_points(c, replaced, q);
     if (const auto s = static_filter_.orientation(refs)) return *s;
     return kernel::orientation_d<D>(refs);
+  }
+  /// Cell c's vertices, the one at position `replaced` (if any) replaced by q.
+  kernel::Point_refs<D, D + 1> orientation_points(std::size_t c, int replaced, const Point* q) const {
+    kernel::Point_refs<D, D + 1> refs;
+    for (int k = 0; k <= D; ++k) refs[k] = k == replaced ? q : &points_[cells_[c].v[k]];
+    return refs;
+  }
+  /// Finite cell c's vertices, then q.
+  kernel::Point_refs<D, D + 2> sphere_points(std::size_t c, const Point& q) const {
+    kernel::Point_refs<D, D + 2> refs;
+    for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c].v[k]];
+    refs[D + 1] = &q;
+    return refs;
   }
 
   /// Whether q lies inside the perturbed sphere of finite cell c.
   bool sphere_holds(std::size_t c, const Point& q) const {
-    kernel::Point_refs<D, D + 2> refs;
-    for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c].v[k]];
-    refs[D + 1] = &q;
+    const auto refs = sphere_points(c, q);
     if (const auto s = static_filter_.side_of_oriented_sphere(refs)) return *s == kernel::POSITIVE;
     return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
   }
@@ -374,16 +384,8 @@ class Incremental_delaunay {
   /// cost more than the walk it saves).
   bool proven_in_conflict(std::size_t c, const Point& q) const {
     const int i = infinite_position(c);
-    if (i > D) {
-      kernel::Point_refs<D, D + 2> refs;
-      for (int k = 0; k <= D; ++k) refs[k] = &points_[cells_[c].v[k]];
-      refs[D + 1] = &q;
-      const auto s = static_filter_.side_of_oriented_sphere(refs);
-      return s && *s == kernel::POSITIVE;
-    }
-    kernel::Point_refs<D, D + 1> refs;
-    for (int k = 0; k <= D; ++k) refs[k] = k == i ? &q : &points_[cells_[c].v[k]];
-    const auto s = static_filter_.orientation(refs);
+    const auto s = i > D ? static_filter_.side_of_oriented_sphere(sphere_points(c, q))
+                         : static_filter_.orientation(orientation_points(c, i, &q));
     return s && *s == kernel::POSITIVE;
   }
 
