@@ -105,6 +105,7 @@ void filter_region(Graph& g, bool flip, Region_filter<D>& filter) {
       g.state(g.neighbor(c, i)) |= NEAR_OPEN;
       if (g.vertex_is_infinite(c, i)) hull.push_back(g.neighbor(c, i));
     }
+  const bool walk = !filter.asks_every_cell();
   auto test = [&](Cell c) {
     std::int32_t& state = g.state(c);
     if ((state & STATE) != UNTESTED) return;
@@ -112,15 +113,19 @@ void filter_region(Graph& g, bool flip, Region_filter<D>& filter) {
       state |= KEPT;
     } else {
       state |= DROPPED;
-      queue.push_back(c);
+      if (walk) queue.push_back(c);
       for (int i = 0; i <= D; ++i) g.state(g.neighbor(c, i)) |= NEAR_OPEN;
     }
   };
-  for (const Cell c : hull) test(c);
-  while (!queue.empty()) {
-    const Cell c = queue.back();
-    queue.pop_back();
-    for (int i = 0; i <= D; ++i) test(g.neighbor(c, i));
+  if (!walk) {
+    g.for_each_cell(test);  // (infinite cells are not UNTESTED: skipped)
+  } else {
+    for (const Cell c : hull) test(c);
+    while (!queue.empty()) {
+      const Cell c = queue.back();
+      queue.pop_back();
+      for (int i = 0; i <= D; ++i) test(g.neighbor(c, i));
+    }
   }
   g.for_each_cell([&](Cell c) {
     const std::int32_t state = g.state(c);

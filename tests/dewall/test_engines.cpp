@@ -233,12 +233,21 @@ TEST_CASE("engines: streaming gives the collected set, and the collected list on
 }
 
 TEST_CASE("engines: a stream settled at its first region never hands over", "[engine][stream]") {
-  // A budget spent after the first region (a search costs about 6 candidates
-  // on these uniform points; measured): collected, the run hands over;
+  // A budget spent after the first region: uniform points in [0, 2) × [0, 1)²
+  // beside points on a sphere, so the top wall cuts the uniform points (a
+  // cheap wall), side 1 is uniform (built first on one thread: its regions
+  // are kept) and side 2 holds the sphere, where the tests of the slabs' and
+  // the regions' spheres look at every point. Collected, the run hands over;
   // streamed, the first region kept settles the decision and the run finishes
   // with the walls, passing on what it held.
-  const auto points = generated<3>(dewall::io::Point_kind::uniform, 6000, 20);
-  const Options options{.threads = 1, .handover_candidates_per_search = 6, .region_points = 200};
+  auto points = generated<3>(dewall::io::Point_kind::uniform, 4000, 20);
+  for (auto& p : points) p.x[0] *= 2;
+  for (auto p : generated<3>(dewall::io::Point_kind::sphere, 2000, 21)) {
+    p.x[0] += 4.5;
+    points.push_back(p);
+  }
+  // (Passes with a budget of 100 to 5000 candidates per search: a wide margin.)
+  const Options options{.threads = 1, .handover_candidates_per_search = 300, .region_points = 200};
   const auto collected = dewall::triangulate<3>(points, options);
   dewall::Statistics st;
   const auto serial = streamed<3>(points, options, &st);
@@ -357,10 +366,10 @@ TEST_CASE("engines: the incremental engine in 4D and 5D, with duplicates", "[eng
 }
 
 TEST_CASE("engines: the budget decides, and the statistics say so", "[engine]") {
-  const auto points = generated<3>(dewall::io::Point_kind::uniform, 2000, 12);
+  const auto points = generated<3>(dewall::io::Point_kind::sphere, 2000, 12);
   // A budget below what any search needs hands over once the allowance is
-  // spent: 4^(d-2)·n = 8000 candidates here, a few hundred searches of ~10 candidates
-  // (forced DeWall makes about 25,000 searches on these points).
+  // spent: 4^(d-2)·n = 8000 candidates here; on points on a sphere a search
+  // (the walls' or a test of a sphere's emptiness) looks at hundreds.
   const auto t = dewall::triangulate<3>(points, Options{.handover_candidates_per_search = 0.5, .region_points = 100});
   CHECK(t.statistics.engine == dewall::default_incremental_engine(3));
   CHECK(t.statistics.searches_before_handover >= 1);

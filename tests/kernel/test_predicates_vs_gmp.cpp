@@ -292,3 +292,46 @@ TEST_CASE("Wide_integer: its operations agree with GMP modulo 2^(64 L)", "[predi
   check_width(std::integral_constant<int, 3>{});
   check_width(std::integral_constant<int, 5>{});
 }
+
+// The walls' point set scales every input by a power of two (to the unit box),
+// so a lattice reaches the predicates with coordinates k · 2^s: the cheap exact
+// stage must still decide it, and exactly.
+TEMPLATE_TEST_CASE_SIG("exact in double: lattices scaled by 2^s are decided, as GMP decides them",
+                       "[gmp][predicates]", ((int D), D), 2, 3, 4, 5, 6) {
+  const auto seed = dewall::test::test_seed(0x1a771ce + D);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  for (const int s : {-1074 + 8, -1000, -30, -6, 0, 3, 400}) {
+    INFO("scale 2^" << s);
+    int orientation_zero = 0, sphere_zero = 0;
+    for (int c = 0; c < 40; ++c) {
+      auto points = dewall::test::lattice_points<D>(rng, D + 2, -2, 2);
+      if (c % 2 == 0)  // an affine combination: a flat simplex, zero exactly
+        for (int j = 0; j < D; ++j)
+          points[D].x[static_cast<std::size_t>(j)] = points[0][j] + points[1][j] - points[2][j];
+      for (auto& p : points)
+        for (int j = 0; j < D; ++j) p.x[static_cast<std::size_t>(j)] = std::ldexp(p[j], s);
+      std::array<Point<D>, D + 1> simplex;
+      Orientation_points<D> orientation_refs;
+      Sphere_points<D> sphere_refs;
+      for (int i = 0; i <= D + 1; ++i) {
+        if (i <= D) {
+          simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
+          orientation_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+        }
+        sphere_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
+      }
+      INFO(dewall::test::format_points<D>(points));
+      const auto orientation = stages::exact_in_double<Orientation_recipe<D>, D>(orientation_refs);
+      REQUIRE(orientation.has_value());
+      CHECK(*orientation == dewall::test::gmp_orientation<D>(simplex));
+      orientation_zero += *orientation == ZERO;
+      const auto sphere = stages::exact_in_double<Side_of_sphere_recipe<D>, D>(sphere_refs);
+      REQUIRE(sphere.has_value());
+      CHECK(*sphere == dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]));
+      sphere_zero += *sphere == ZERO;
+    }
+    // The ties were decided too.
+    CHECK(orientation_zero > 0);
+  }
+}

@@ -48,6 +48,11 @@ class Region_filter {
   /// includes hull facets), so that walk meets all of them. On 10^5 uniform
   /// points it asks 1 cell in ~N instead of all.
   virtual bool empty_of_others(const Simplex<D>& cell) = 0;
+  /// When true, every finite cell is asked instead (in DT(R)'s order), and a
+  /// cell answered false is simply not kept: a wall's slab (wall.hpp) keeps
+  /// only the cells that cross its wall, each proven on its own, so the walk
+  /// would spread through cells it never keeps.
+  virtual bool asks_every_cell() const { return false; }
   /// A simplex of DT(R) whose sphere holds no point outside R, so of DT(P)
   /// (positively oriented), in DT(R)'s order. Bit i of `open` is set when the
   /// face opposite vertex i is on no other such simplex (on the hull of R, or

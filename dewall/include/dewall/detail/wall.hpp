@@ -12,7 +12,9 @@
 //     recurse_on_halves.
 // With regions (Engine::hybrid, automatic), a subproblem may instead be
 // triangulated as a region (region.hpp, triangulate_region), and finish
-// gift-wraps, with the same wall_loop, the faces the regions left open.
+// gift-wraps, with the same wall_loop, the faces the regions left open; and
+// a wall is first built from a slab around α by the regions' construction
+// (wall_from_slab), the wall loop then finding only what the slab missed.
 // Below the top level an empty AFL ends the recursion: every simplex lying in
 // P1 shares a face with the wall or with another such simplex (the region they
 // cover is bounded by wall simplices and the hull), so none is missed. The
@@ -34,6 +36,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cmath>
 #include <mutex>
 #include <span>
 #include <utility>
@@ -192,11 +195,13 @@ class Wall_builder {
   std::pair<Subproblem, Subproblem> build_wall(Subproblem& p, const Cut& cut, Task& task) {
     Face_lists lists{ps_.coords, cut.split, {}, {}, {}};
     const std::size_t before = task.out.size();
-    if (p.depth == 0) add_simplex(first_simplex(ps_, task.search, p.points, cut.split), -1, 0, lists, task);
     while (!p.afl.empty()) {
       const Face<D> f = p.afl.pop();
       lists(f).update(f);
     }
+    const bool seeded = region_may_take_wall(p) && wall_from_slab(p, cut.split, lists, task);
+    if (p.depth == 0 && !seeded)
+      add_simplex(first_simplex(ps_, task.search, p.points, cut.split), -1, 0, lists, task);
     wall_loop(lists.wall, p.depth, lists, task);
     task.stats.simplices += task.out.size() - before;
     if (p.depth == 0) task.stats.first_wall_simplices = task.out.size() - before;
@@ -205,6 +210,106 @@ class Wall_builder {
                        p.depth + 1, p.regions_apply},
             Subproblem{p.points.subspan(cut.side1_size), std::move(lists.side2), p.bounds.cut(a.axis, a.value, false),
                        p.depth + 1, p.regions_apply}};
+  }
+
+  /// Whether the regions' construction may build p's wall from a slab: with
+  /// regions on, and p exactly the points the walls above leave (the slab's
+  /// proof, like a region's, rests on the bounds those walls draw).
+  bool region_may_take_wall(const Subproblem& p) const { return p.regions_apply && regions_; }
+
+  /// A wall's slab (slab_of): its points, and the open box they lie in and
+  /// no other point of the input does.
+  struct Slab {
+    std::vector<Index> points;
+    Region_bounds<D> bounds;
+  };
+
+  /// A slab around α: about slab_size_factor · n^((D−1)/D) of p's
+  /// points nearest α (a few layers of points on each side, for points spread
+  /// in volume), as the points strictly between two coordinates lo < x_a <
+  /// hi (exact comparisons); its bounds are p's cut to (lo, hi), so no other
+  /// point of the input lies strictly inside them.
+  Slab slab_of(const Subproblem& p, const Split<D>& split) const {
+    const int a = split.axis;
+    const double n = static_cast<double>(p.points.size());
+    const auto wanted = static_cast<std::size_t>(std::min(n, slab_size_factor * std::pow(n, (D - 1.0) / D)));
+    std::vector<double> distance(p.points.size());
+    for (std::size_t i = 0; i < distance.size(); ++i)
+      distance[i] = std::abs(ps_.coords[p.points[i]][a] - split.value);
+    const auto kth = distance.begin() + static_cast<std::ptrdiff_t>(std::max<std::size_t>(wanted, 1) - 1);
+    std::nth_element(distance.begin(), kth, distance.end());
+    // Any two doubles bound a slab: the proof needs only that the points
+    // outside it are not strictly between them.
+    Slab slab;
+    slab.bounds = p.bounds;
+    slab.bounds.lo[a] = std::max(slab.bounds.lo[a], split.value - *kth);
+    slab.bounds.hi[a] = std::min(slab.bounds.hi[a], split.value + *kth);
+    for (const Index q : p.points) {
+      const double x = ps_.coords[q][a];
+      if (slab.bounds.lo[a] < x && x < slab.bounds.hi[a]) slab.points.push_back(q);
+    }
+    return slab;
+  }
+
+  /// Most of a wall at an incremental construction's speed, not the gift-
+  /// wrapping's (issue 25, item 3). Why it is exact: a simplex of DT(P) whose
+  /// vertices all lie in the slab S is a simplex of DT(S), and a simplex of
+  /// DT(S) is one of DT(P) when its sphere holds no other point (region.hpp,
+  /// same argument). So the cells of DT(S) crossing α whose spheres are proven
+  /// empty (inside the slab's bounds, else the exact search) are wall
+  /// simplices; each is emitted and its faces not shared with another kept
+  /// cell are Updated into their lists. The wall simplices with a vertex
+  /// outside S are then found by the wall loop from the faces left in AFL_α
+  /// (the simplices crossing α are connected through faces crossing α, as
+  /// DeWall's own wall loop relies on). Returns whether a simplex was kept.
+  bool wall_from_slab(const Subproblem& p, const Split<D>& split, Face_lists& lists, Task& task) {
+    Slab slab = slab_of(p, split);
+    if (slab.points.size() <= static_cast<std::size_t>(D)) return false;
+    struct Filter final : Region_filter<D> {
+      Wall_builder& builder;
+      const Region_bounds<D>& bounds;
+      const Split<D>& split;
+      Face_lists& lists;
+      Task& task;
+      std::size_t depth;
+      std::size_t kept = 0;
+      Filter(Wall_builder& b, const Region_bounds<D>& bo, const Split<D>& sp, Face_lists& l, Task& t, std::size_t d)
+          : builder(b), bounds(bo), split(sp), lists(l), task(t), depth(d) {}
+      void begin(std::size_t) override {}
+      bool asks_every_cell() const override { return true; }
+      bool empty_of_others(const Simplex<D>& s) override {
+        int n1 = 0;
+        for (Index v : s) n1 += split.on_side1(builder.ps_.coords[v]);
+        if (n1 == 0 || n1 == D + 1) return false;  // not a wall simplex: the halves' own
+        bool searched = false;
+        return builder.empty_of_outside(s, bounds, task.search, searched);
+      }
+      void keep(const Simplex<D>& s, unsigned open) override {
+        ++kept;
+        builder.emit(task.out, s, depth);
+        for (int i = 0; i <= D; ++i)
+          if (open >> i & 1u) {
+            const Face<D> g = opposite_face<D>(s, i);
+            lists(g).update(g);
+          }
+      }
+    } filter(*this, slab.bounds, split, lists, task, p.depth);
+    return (*regions_)(slab.points, ps_.coords, filter) && filter.kept > 0;
+  }
+
+  /// Whether the sphere of s (positively oriented) holds no point outside the
+  /// open box `bounds`, when no other point of the input lies strictly inside
+  /// it: a ball strictly inside holds none; otherwise the exact test against
+  /// every point near it (charged like a search: on cospherical input these
+  /// tests look at every point, as the walls' searches do).
+  /// `searched`: set when the exact test ran.
+  bool empty_of_outside(const Simplex<D>& s, const Region_bounds<D>& bounds, Simplex_search<K>& search,
+                        bool& searched) const {
+    const Simplex_sphere<D> sphere = search.sphere_of(s);
+    const Ball_box<D>& ball = sphere.enclosing_box();
+    if (ball.bounded && bounds.strictly_contains(ball.lo, ball.hi)) return true;
+    searched = true;
+    return search.is_empty_sphere(s, sphere);
   }
 
   /// The wall loop (the paper's step 4), for a wall and for finish: while
@@ -304,15 +409,9 @@ class Wall_builder {
         handover = Region_handover(search.charges_budget(), count);
       }
       bool empty_of_others(const Simplex<D>& s) override {
-        const Simplex_sphere<D> sphere = search.sphere_of(s);
-        const Ball_box<D>& ball = sphere.enclosing_box();
-        // A ball strictly inside the region's box holds no outside point;
-        // otherwise the exact test against every point near it. (Charged like
-        // a search: on cospherical input these tests look at every point, as
-        // the walls' searches do.)
-        if (ball.bounded && bounds.strictly_contains(ball.lo, ball.hi)) return true;
-        const bool empty = search.is_empty_sphere(s, sphere);
-        if (handover.searched_one()) search.hand_over();
+        bool searched = false;
+        const bool empty = builder.empty_of_outside(s, bounds, search, searched);
+        if (searched && handover.searched_one()) search.hand_over();
         return empty;
       }
       void keep(const Simplex<D>& s, unsigned open) override {
@@ -370,6 +469,12 @@ class Wall_builder {
     stats_.max_depth = std::max(stats_.max_depth, w.max_depth);
     stats_.region_simplices += w.region_simplices;
   }
+
+  /// A wall's slab holds about this many times n^((D−1)/D) points (slab_of):
+  /// for points spread in volume, a layer and a half on each side of α, enough
+  /// that most wall simplices lie in it with their spheres (of 2, 3, 4, 6, 8,
+  /// 3 and 4 were fastest: docs/engines.md).
+  static constexpr double slab_size_factor = 3;
 
   const Point_set<K>& ps_;
   int parallel_depth_;

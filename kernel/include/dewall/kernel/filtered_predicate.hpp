@@ -22,6 +22,7 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 
@@ -217,7 +218,13 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
   return Recipe::sign_adjust * static_cast<Sign>(determinant_sign_in_place<K>(w.m, w.minor));
 }
 
-/// Stage 1b, for small integer inputs (lattices, grids: every tie exact):
+/// Stage 1b, for small integer inputs (lattices, grids: every tie exact),
+/// also after a common power-of-two scale (a lattice of spacing 2^-6 is one
+/// of spacing 1 scaled: the walls' point set scales every input to the unit
+/// box, and both signs are of homogeneous polynomials, unchanged by a
+/// positive factor). The points are first multiplied by 2^-q, q the lowest
+/// set bit of any of their coordinates, which is exact (the products are
+/// integers, checked below 2^20, so neither rounding nor underflow). Then,
 /// when every coordinate is an integer of magnitude at most 2^20, the entries
 /// (differences, and sums of squared differences below 2^53) are computed
 /// exactly; if then K!·Π_j M_j < 2^52 (M_j the largest |entry| of column j),
@@ -232,12 +239,32 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 template <class Recipe, int D>
 std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   constexpr int K = Recipe::size;
+  // q: the exponent of the lowest set bit over all coordinates (x = odd · 2^e).
+  int q = std::numeric_limits<int>::max();
   for (int i = 0; i < Recipe::arity; ++i)
     for (int j = 0; j < D; ++j) {
       const double x = (*p[static_cast<std::size_t>(i)])[j];
-      if (!(std::fabs(x) <= 0x1p20) || x != std::nearbyint(x)) return std::nullopt;
+      if (!std::isfinite(x)) return std::nullopt;
+      if (x == 0) continue;
+      int e = 0;
+      const double mantissa = std::frexp(x, &e);  // x = mantissa · 2^e, 2^52 · mantissa an integer
+      const auto bits = static_cast<std::uint64_t>(std::fabs(std::ldexp(mantissa, 53)));
+      const int zeros = std::countr_zero(bits);
+      // x's odd part, bits >> zeros, is at least 2^(52 − zeros): above 2^20
+      // unless zeros ≥ 32 (returns at once on coordinates of full precision).
+      if (zeros < 32) return std::nullopt;
+      q = std::min(q, e - 53 + zeros);
     }
-  const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+  if (q == std::numeric_limits<int>::max()) q = 0;  // all zero
+  std::array<std::array<double, D>, Recipe::arity> scaled;
+  for (int i = 0; i < Recipe::arity; ++i)
+    for (int j = 0; j < D; ++j) {
+      const double x = std::ldexp((*p[static_cast<std::size_t>(i)])[j], -q);
+      if (!(std::fabs(x) <= 0x1p20)) return std::nullopt;
+      scaled[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = x;
+    }
+  const auto m = Recipe::template matrix<double>(
+      [&](int i, int j) { return scaled[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]; });
   double bound = factorial_int(K);
   for (int j = 0; j < K; ++j) {
     double column_max = 0;
