@@ -990,11 +990,11 @@ void check_distinct_points(const Comm& c, const std::vector<Record<D>>& block) {
   }
 }
 
-}  // namespace
-
+/// triangulate_into's two forms; `owned`, when given, holds `local` and is
+/// freed once the points are packed for their blocks.
 template <int D>
-Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
-                            const Simplex_sink<D>& sink, const Options& options) {
+Statistics run(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+               const Simplex_sink<D>& sink, const Options& options, std::vector<kernel::Point_d<D>>* owned) {
   const kernel::Fp_environment_guard guard;
   Comm c{comm};
   MPI_Comm_rank(comm, &c.rank);
@@ -1025,6 +1025,7 @@ Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> l
       for (int q = 1; q < c.size; ++q) at[q] = at[q - 1] + count[q - 1];
       send.resize(local.size());
       for (std::size_t i = 0; i < local.size(); ++i) send[at[rank_of[i]]++] = {global_offset + i, local[i].x};
+      if (owned) std::vector<kernel::Point_d<D>>().swap(*owned);  // `local` is not read again
     });
     run_collectively(comm, [&] {
       std::vector<Record<D>> got = alltoall(c, send, count);
@@ -1044,8 +1045,24 @@ Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> l
   return st;
 }
 
+}  // namespace
+
+template <int D>
+Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options) {
+  return run<D>(comm, local, global_offset, sink, options, nullptr);
+}
+
+template <int D>
+Statistics triangulate_into(MPI_Comm comm, std::vector<kernel::Point_d<D>>&& local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options) {
+  return run<D>(comm, std::span<const kernel::Point_d<D>>(local), global_offset, sink, options, &local);
+}
+
 #define DEWALL_INSTANTIATE_MPI(D)                                                                   \
   template Statistics triangulate_into<D>(MPI_Comm, std::span<const kernel::Point_d<D>>, std::uint64_t, \
+                                          const Simplex_sink<D>&, const Options&);                 \
+  template Statistics triangulate_into<D>(MPI_Comm, std::vector<kernel::Point_d<D>>&&, std::uint64_t,  \
                                           const Simplex_sink<D>&, const Options&);
 DEWALL_INSTANTIATE_MPI(2)
 DEWALL_INSTANTIATE_MPI(3)

@@ -500,7 +500,6 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
   const Format format = format_of(args.output);
   // 8-byte .dwsx indices when 4 cannot hold them (an index up to n − 1; 2^32 − 1 is no index in dewall's files).
   const int index_bytes = args.index_bytes ? args.index_bytes : share.count > (std::uint64_t{1} << 32) - 2 ? 8 : 4;
-  const std::span<const dewall::kernel::Point_d<D>> local(points);
   dewall::mpi::Statistics st;
   double write_seconds = 0;
   const auto report_invalid = [&](const dewall::Invalid_input& e) {
@@ -553,7 +552,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
     s.start = [&](std::uint64_t n) { guarded(failed, [&] { sink.start(n); }); };
     s.take = [&](std::span<const S> b) { guarded(failed, [&] { sink.take(b); }); };
     try {
-      st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+      st = dewall::mpi::triangulate_into<D>(comm, std::move(points), share.first, s, args.options);
     } catch (const dewall::Invalid_input& e) {
       return report_invalid(e);
     }
@@ -596,7 +595,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       s.start = [&](std::uint64_t n) { writer.start(n); };  // collective: must not be skipped
       s.take = [&](std::span<const S> b) { guarded(failed, [&] { writer.take(b); }); };
       try {
-        st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+        st = dewall::mpi::triangulate_into<D>(comm, std::move(points), share.first, s, args.options);
       } catch (...) {
         MPI_File_close(&fh);  // every rank is here (the library's errors are collective); rank 0's file removes the temporary
         try {
@@ -620,7 +619,8 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
     } else {
       dewall::mpi::Result<D> r;
       try {
-        r = dewall::mpi::triangulate<D>(comm, local, share.first, args.options);
+        r = dewall::mpi::triangulate<D>(comm, std::span<const dewall::kernel::Point_d<D>>(points), share.first,
+                                        args.options);
       } catch (const dewall::Invalid_input& e) {
         return report_invalid(e);
       }
