@@ -86,7 +86,7 @@ const char* const usage_text =
     "  --stream  each rank builds its block in regions of at most 2^21 points, one after\n"
     "            another, and writes each region's simplices as soon as it is done: a\n"
     "            rank holds its block's points and one region's triangulation (about\n"
-    "            0.8 GB in 3D) instead of its whole block's; the output's order is then\n"
+    "            0.9 GB in 3D) instead of its whole block's; the output's order is then\n"
     "            region by region (--sorted and --per-rank keep theirs)\n"
     "  --region-points N   as --stream, with regions of at most N points\n"
     "  --index-bytes W   .dwsx indices of W bytes (default: 4, or 8 beyond 2^32 - 2 points)\n"
