@@ -21,9 +21,10 @@ constexpr std::size_t chunk_rows = std::size_t{1} << 19;
 
 }  // namespace
 
-void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count) {
+void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count, int index_bytes) {
   detail::write_binary_header(out, binary_simplices_magic,
-                              {binary_simplices_version, static_cast<std::uint32_t>(dimension), 4, count});
+                              {binary_simplices_version, static_cast<std::uint32_t>(dimension),
+                               static_cast<std::uint32_t>(index_bytes), count});
 }
 
 void write_binary_simplex_indices(std::ostream& out, std::span<const std::uint32_t> indices) {

@@ -38,6 +38,12 @@
 //     The answers join S (each point sent to a rank once).
 //  5. Each rank keeps the finite cells of DT(S) whose smallest global vertex
 //     index lies in its block.
+// With regions (Options::region_points), steps 4 and 5 run once per region of
+// the block, all ranks in step: the block is cut into regions by step 2's
+// cuts (on the rank alone), and for region Q, S starts as Q; "other blocks"
+// are then the other ranks' blocks and this rank's other regions (asked
+// through the same exchange, the rank answering itself). The argument below
+// holds with Q for the block: Q is a cell of DeWall's cuts, as a block is.
 //
 // Why the result is DT(P) of all points P, each simplex on exactly one rank.
 // Under CGAL's perturbation (only the lifting is perturbed, lexicographically
@@ -420,93 +426,193 @@ class Rank_triangulation {
   Rank_triangulation(const Comm& c, std::vector<Record<D>> block, const Options& options, Statistics& stats)
       : c_(c), options_(options), stats_(stats) {
     nb_ = block.size();
+    points_.reserve(nb_);
+    gid_.reserve(nb_);
     for (const Record<D>& r : block) {
       points_.push_back(kernel::Point_d<D>{r.x});
       gid_.push_back(r.gid);
     }
+    std::vector<Record<D>>().swap(block);
     Box<D> mine = Box<D>::empty();
     for (const auto& p : points_) mine.add(p.x);
     boxes_.resize(c.size);
     MPI_Allgather(&mine, sizeof(Box<D>), MPI_BYTE, boxes_.data(), sizeof(Box<D>), MPI_BYTE, c.comm);
     sent_.resize(c.size);
     pending_.resize(c.size);
+    others_.resize(c.size);
     all_blocks_ = detail::Box<D>{Box<D>::empty().lo, Box<D>::empty().hi};
     for (const Box<D>& b : boxes_)
       for (int j = 0; j < D && !b.is_empty(); ++j) {
         all_blocks_.lo[j] = std::min(all_blocks_.lo[j], b.lo[j]);
         all_blocks_.hi[j] = std::max(all_blocks_.hi[j], b.hi[j]);
       }
+    make_regions();
   }
 
-  /// Step 4 and 5.
+  /// Step 4 and 5, region after region (one region: the block).
   void run(const Simplex_sink<D>& sink) {
     const double t_index = MPI_Wtime();
     index_.build(points_, nb_);
     stats_.index_seconds = MPI_Wtime() - t_index;
+    stats_.regions = region_start_.size() - 1;
+    for (std::size_t r = 0; r + 1 < region_start_.size(); ++r) run_region(r, sink);
+  }
+
+ private:
+  /// With Options::region_points: the block cut into regions by the cuts of
+  /// step 2 (decompose, on this rank alone), the points reordered region by
+  /// region. Regions are cells of DeWall's cuts, so what verification_queries'
+  /// walk relies on (a cell with all its vertices in the region holds no
+  /// point outside it) holds for them as for blocks. Every rank makes the same
+  /// number of regions (the rounds are collective), some maybe empty.
+  void make_regions() {
+    std::uint64_t largest = 0, mine = nb_;
+    MPI_Allreduce(&mine, &largest, 1, MPI_UINT64_T, MPI_MAX, c_.comm);
+    std::uint64_t regions = 1;
+    if (options_.region_points > 0)
+      regions = std::max<std::uint64_t>(1, (largest + options_.region_points - 1) / options_.region_points);
+    if (regions > static_cast<std::uint64_t>(INT_MAX)) throw std::length_error("dewall::mpi: too many regions");
+    region_start_.assign(regions + 1, 0);
+    region_box_.assign(regions, Box<D>::empty());
+    if (regions == 1) {
+      region_start_[1] = nb_;
+      region_box_[0] = boxes_[c_.rank];
+      return;
+    }
+    std::vector<int> region_of;
+    run_collectively(c_.comm, [&] {
+      region_of = decompose<D>(Comm{MPI_COMM_SELF, 0, static_cast<int>(regions)}, points_);
+    });
+    for (const int r : region_of) ++region_start_[static_cast<std::size_t>(r) + 1];
+    for (std::size_t r = 1; r <= regions; ++r) region_start_[r] += region_start_[r - 1];
+    std::vector<std::uint64_t> at(region_start_.begin(), region_start_.end() - 1);
+    {
+      std::vector<kernel::Point_d<D>> p(nb_);
+      for (std::size_t i = 0; i < nb_; ++i) p[at[region_of[i]]++] = points_[i];
+      points_.swap(p);
+    }
+    std::copy(region_start_.begin(), region_start_.end() - 1, at.begin());
+    {
+      std::vector<std::uint64_t> g(nb_);
+      for (std::size_t i = 0; i < nb_; ++i) g[at[region_of[i]]++] = gid_[i];
+      gid_.swap(g);
+    }
+    for (std::size_t r = 0; r < regions; ++r)
+      for (std::size_t i = region_start_[r]; i < region_start_[r + 1]; ++i) region_box_[r].add(points_[i].x);
+  }
+
+  /// Region r: S = its points (points_[lo_, hi_)) and the halo (points_[nb_,
+  /// …)); the rounds until no rank receives a point, then the owned cells to
+  /// the sink and the region's state freed. "Other blocks" below are, for
+  /// this rank, its other regions: it asks itself about them as it asks the
+  /// other ranks (through the same exchange), its region's own points
+  /// counting as sent.
+  void run_region(std::size_t region, const Simplex_sink<D>& sink) {
+    lo_ = region_start_[region];
+    hi_ = region_start_[region + 1];
+    const bool last = region + 2 == region_start_.size();
+    for (int r = 0; r < c_.size; ++r) {
+      others_[r].clear();
+      if (r != c_.rank && !boxes_[r].is_empty()) others_[r].push_back(boxes_[r]);
+      if (!sent_[r].empty()) std::fill(sent_[r].begin(), sent_[r].end(), 0);
+    }
+    for (std::size_t j = 0; j + 1 < region_start_.size(); ++j)
+      if (j != region && !region_box_[j].is_empty()) others_[c_.rank].push_back(region_box_[j]);
+    if (!others_[c_.rank].empty()) {
+      sent_[c_.rank].assign(nb_, 0);
+      std::fill(sent_[c_.rank].begin() + static_cast<std::ptrdiff_t>(lo_), sent_[c_.rank].begin() + static_cast<std::ptrdiff_t>(hi_), 1);
+    }
+    spanning_ = false;
+    in_dt_ = 0;
     std::vector<std::vector<Query<D>>> queries(c_.size);
-    run_collectively(c_.comm, [&] { seed_queries(queries); });
+    run_collectively(c_.comm, [&] { seed_queries(region, queries); });
     bool verifying = false;
     detail::Incremental_delaunay<D> dt;
+    std::size_t rounds = 0;
     for (;;) {
       const double t0 = MPI_Wtime();
       const std::uint64_t fresh = allreduce_sum(c_, halo_round(queries));
       stats_.halo_seconds += MPI_Wtime() - t0;
       ++stats_.rounds;
+      ++rounds;
       if (verifying && fresh == 0) break;
       verifying = true;
       const double t1 = MPI_Wtime();
       run_collectively(c_.comm, [&] {
         for (auto& q : queries) q.clear();
-        if (nb_ == 0) return;
+        if (lo_ == hi_) return;
+        // S's point k: the region's points, then the halo; the engine keeps
+        // the position in points_ as the point's id.
+        const auto slot = [&](std::size_t k) { return k < hi_ - lo_ ? lo_ + k : nb_ + (k - (hi_ - lo_)); };
         // The first triangulation of S is built; the points of later rounds
         // are inserted into it (the static filter made for the box of all
         // blocks, which holds every point a round can bring).
-        const auto coords = [&](std::size_t k) -> const Coords<D>& { return points_[k].x; };
         bool built = spanning_;
         if (spanning_) {
           dt.insert_more(
-              points_.size() - in_dt_, [&](std::size_t k) -> const Coords<D>& { return coords(in_dt_ + k); },
+              points_.size() - in_dt_, [&](std::size_t k) -> const Coords<D>& { return points_[in_dt_ + k].x; },
               [&](std::size_t k) { return in_dt_ + k; });
         } else {
+          const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
           dt = detail::Incremental_delaunay<D>();
-          dt.reserve(detail::Incremental_delaunay<D>::expected_cells(points_.size() + points_.size() / 8));
-          built = dt.build(points_.size(), coords, [](std::size_t k) { return k; }, &all_blocks_);
+          dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
+          built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
+                           &all_blocks_);
         }
         ++stats_.builds;
         in_dt_ = points_.size();
         stats_.build_seconds += MPI_Wtime() - t1;
         if (!built) {
-          // S does not span E^D (a flat block): ask for everything; P spans E^D.
+          // S does not span E^D (a flat region): ask for everything; P spans E^D.
           Query<D> all;
           for (int j = 0; j < D; ++j) {
             all.d[j] = -std::numeric_limits<double>::infinity();
             all.d[D + j] = std::numeric_limits<double>::infinity();
           }
           for (int q = 0; q < c_.size; ++q)
-            if (q != c_.rank && !boxes_[q].is_empty()) queries[q].push_back(all);
+            if (!others_[q].empty()) queries[q].push_back(all);
           return;
         }
         spanning_ = true;
         const double t2 = MPI_Wtime();
-        verification_queries(dt, queries);
+        verification_queries(dt, queries, rounds);
         stats_.verify_seconds += MPI_Wtime() - t2;
       });
     }
-    // Step 5, after the last collective call: the owned cells, counted, then
-    // handed over in batches, in slot order (the same on every run with R ranks).
+    // Step 5, outside dewall::mpi's collective calls (the sink may make its
+    // own): the owned cells, counted, then handed over in batches, in slot
+    // order (the same on every run with R ranks).
     const double t3 = MPI_Wtime();
-    // What answered and tracked questions is done with: freed before the
-    // keys and the sink's buffers are made (the rank's memory peak).
-    index_ = Block_index<D>();
-    decltype(sent_)().swap(sent_);
     decltype(verified_)().swap(verified_);
-    decltype(pending_)().swap(pending_);
-    decltype(points_)().swap(points_);
+    for (auto& p : pending_) {
+      p.clear();
+      p.shrink_to_fit();
+    }
+    if (last) {
+      // What answered questions is done with: freed before the keys and the
+      // sink's buffers are made (the rank's memory peak without regions).
+      index_ = Block_index<D>();
+      decltype(sent_)().swap(sent_);
+      decltype(points_)().swap(points_);
+    } else {
+      points_.resize(nb_);  // the region's halo
+      points_.shrink_to_fit();
+    }
+    run_collectively(c_.comm, [&] { hand_over(dt, sink); });
+    gid_.resize(nb_);
+    if (!last) gid_.shrink_to_fit();
+    stats_.finish_seconds += MPI_Wtime() - t3;
+  }
+
+  /// The cells of dt owned by the region (those whose smallest global index
+  /// is one of its points) to the sink.
+  void hand_over(const detail::Incremental_delaunay<D>& dt, const Simplex_sink<D>& sink) {
     // By vertex id (the engine's insertion order, which its cells follow):
     // 2·global index + 1 for a halo point, so that the smallest key of a
     // cell is its smallest global index, and its low bit says whether that
-    // vertex lies in another block.
-    std::vector<std::uint64_t> key(nb_ > 0 ? dt.vertices() : 0);
+    // vertex lies outside the region.
+    const bool any = lo_ < hi_ && spanning_;
+    std::vector<std::uint64_t> key(any ? dt.vertices() : 0);
     for (std::size_t v = 0; v < key.size(); ++v) {
       const Index local = dt.input_index(static_cast<Index>(v));
       key[v] = gid_[local] << 1 | (local < nb_ ? 0 : 1);
@@ -515,16 +621,16 @@ class Rank_triangulation {
       if (dt.is_free(c) || dt.is_infinite(c)) return false;
       std::uint64_t smallest = std::numeric_limits<std::uint64_t>::max();
       for (const Index v : dt.cell(c)) smallest = std::min(smallest, key[v]);
-      return (smallest & 1) == 0;  // owned by the block of its smallest vertex
+      return (smallest & 1) == 0;  // owned by the region of its smallest vertex
     };
     std::uint64_t count = 0;
-    if (nb_ > 0)
+    if (any)
       for (std::size_t c = 0; c < dt.slots(); ++c) count += owned(c) ? 1 : 0;
     if (sink.start) sink.start(count);
     constexpr std::size_t batch_size = 4096;
     std::vector<Global_simplex<D>> batch;
     batch.reserve(batch_size);
-    for (std::size_t c = 0; c < dt.slots() && nb_ > 0; ++c) {
+    for (std::size_t c = 0; any && c < dt.slots(); ++c) {
       if (!owned(c)) continue;
       const auto& cell = dt.cell(c);
       Global_simplex<D> s;
@@ -543,18 +649,24 @@ class Rank_triangulation {
       }
     }
     if (!batch.empty()) sink.take(batch);
-    stats_.simplices = count;
-    stats_.finish_seconds = MPI_Wtime() - t3;
+    stats_.simplices += count;
   }
 
- private:
-  /// The first halo guess: the points within seed_spacings mean spacings of the block's box.
-  void seed_queries(std::vector<std::vector<Query<D>>>& queries) {
-    if (nb_ == 0 || !(options_.seed_spacings > 0)) return;
-    const Box<D>& mine = boxes_[c_.rank];
+  /// Whether one of the boxes that hold rank r's points outside S passes `test`.
+  template <class Test>
+  bool may_have(int r, Test&& test) const {
+    for (const Box<D>& b : others_[r])
+      if (test(b)) return true;
+    return false;
+  }
+
+  /// The first halo guess: the points within seed_spacings mean spacings of the region's box.
+  void seed_queries(std::size_t region, std::vector<std::vector<Query<D>>>& queries) {
+    if (lo_ == hi_ || !(options_.seed_spacings > 0)) return;
+    const Box<D>& mine = region_box_[region];
     double extent = 0;
     for (int j = 0; j < D; ++j) extent = std::max(extent, mine.hi[j] - mine.lo[j]);
-    const double margin = options_.seed_spacings * extent / std::pow(static_cast<double>(nb_), 1.0 / D);
+    const double margin = options_.seed_spacings * extent / std::pow(static_cast<double>(hi_ - lo_), 1.0 / D);
     Box<D> grown = mine;
     for (int j = 0; j < D; ++j) {
       grown.lo[j] -= margin;
@@ -567,7 +679,7 @@ class Rank_triangulation {
       q.d[D + j] = grown.hi[j];
     }
     for (int r = 0; r < c_.size; ++r)
-      if (r != c_.rank && !boxes_[r].is_empty() && boxes_[r].meets(grown)) queries[r].push_back(q);
+      if (may_have(r, [&](const Box<D>& b) { return b.meets(grown); })) queries[r].push_back(q);
   }
 
   /// Step 4's questions for the cells at the block not yet verified.
@@ -583,7 +695,8 @@ class Rank_triangulation {
   /// which may hold another block's point reaches every cell in conflict with
   /// one. The cells it does not reach are cells of DT(P) untested; on 10^6
   /// points it tests the cells near the block's boundary only.
-  void verification_queries(const detail::Incremental_delaunay<D>& dt, std::vector<std::vector<Query<D>>>& queries) {
+  void verification_queries(const detail::Incremental_delaunay<D>& dt, std::vector<std::vector<Query<D>>>& queries,
+                            std::size_t round) {
     constexpr Index infinite = detail::Incremental_delaunay<D>::infinite;
     for (auto& p : pending_) p.clear();
     enum : std::uint8_t { untested = 0, closed = 1, open = 2 };
@@ -612,7 +725,7 @@ class Rank_triangulation {
         const detail::Simplex_sphere<D> sphere(s);
         const detail::Ball_box<D>& b = sphere.enclosing_box();
         for (int r = 0; r < c_.size; ++r)
-          if (r != c_.rank && !boxes_[r].is_empty() && b.may_meet(boxes_[r].lo, boxes_[r].hi)) ranks.push_back(r);
+          if (may_have(r, [&](const Box<D>& x) { return b.may_meet(x.lo, x.hi); })) ranks.push_back(r);
         q.kind = Query<D>::ball;
         for (int j = 0; j < D; ++j) {
           q.d[j] = b.centre_lo[j];
@@ -631,7 +744,7 @@ class Rank_triangulation {
           for (int j = 0; j < D; ++j) q.d[i * D + j] = f[i][j];
         }
         for (int r = 0; r < c_.size; ++r)
-          if (r != c_.rank && !boxes_[r].is_empty() && box_reaches_beyond<D>(boxes_[r], f, slot)) ranks.push_back(r);
+          if (may_have(r, [&](const Box<D>& x) { return box_reaches_beyond<D>(x, f, slot); })) ranks.push_back(r);
       }
       if (ranks.empty()) {
         state[c] = closed;  // no other block's point can be in conflict with it
@@ -654,7 +767,7 @@ class Rank_triangulation {
       if (!at_block) continue;
       std::sort(key.begin(), key.end());
       if (verified_.count(key)) continue;
-      q.limit = answer_limit();
+      q.limit = answer_limit(round);
       for (const int r : ranks) {
         queries[r].push_back(q);
         pending_[r].push_back(key);
@@ -666,8 +779,8 @@ class Rank_triangulation {
   /// How many points a ball question asks for: 8 in the first verifying
   /// round, doubling with each round (few rounds even where every ball holds
   /// every point, as on a sphere).
-  std::int32_t answer_limit() const {
-    return std::int32_t{8} << std::min<std::size_t>(stats_.rounds, 26);
+  static std::int32_t answer_limit(std::size_t round) {
+    return std::int32_t{8} << std::min<std::size_t>(round, 26);
   }
 
   /// One exchange of questions and answers; the points received join S, and
@@ -800,7 +913,11 @@ class Rank_triangulation {
   const Comm& c_;
   const Options& options_;
   Statistics& stats_;
-  std::size_t nb_ = 0;                        // S = points_[0, nb_) the block, then the halo
+  std::size_t nb_ = 0;                        // points_[0, nb_): the block (region by region); then the halo
+  std::size_t lo_ = 0, hi_ = 0;               // the region: S = points_[lo_, hi_) and the halo
+  std::vector<std::uint64_t> region_start_;   // region r: points_[region_start_[r], region_start_[r + 1])
+  std::vector<Box<D>> region_box_;
+  std::vector<std::vector<Box<D>>> others_;   // by rank: boxes holding its points outside S (this rank: its other regions)
   std::vector<kernel::Point_d<D>> points_;
   std::vector<std::uint64_t> gid_;
   std::vector<Box<D>> boxes_;                 // every rank's block box
@@ -873,11 +990,11 @@ void check_distinct_points(const Comm& c, const std::vector<Record<D>>& block) {
   }
 }
 
-}  // namespace
-
+/// triangulate_into's two forms; `owned`, when given, holds `local` and is
+/// freed once the points are packed for their blocks.
 template <int D>
-Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
-                            const Simplex_sink<D>& sink, const Options& options) {
+Statistics run(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+               const Simplex_sink<D>& sink, const Options& options, std::vector<kernel::Point_d<D>>* owned) {
   const kernel::Fp_environment_guard guard;
   Comm c{comm};
   MPI_Comm_rank(comm, &c.rank);
@@ -908,6 +1025,7 @@ Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> l
       for (int q = 1; q < c.size; ++q) at[q] = at[q - 1] + count[q - 1];
       send.resize(local.size());
       for (std::size_t i = 0; i < local.size(); ++i) send[at[rank_of[i]]++] = {global_offset + i, local[i].x};
+      if (owned) std::vector<kernel::Point_d<D>>().swap(*owned);  // `local` is not read again
     });
     run_collectively(comm, [&] {
       std::vector<Record<D>> got = alltoall(c, send, count);
@@ -927,8 +1045,24 @@ Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> l
   return st;
 }
 
+}  // namespace
+
+template <int D>
+Statistics triangulate_into(MPI_Comm comm, std::span<const kernel::Point_d<D>> local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options) {
+  return run<D>(comm, local, global_offset, sink, options, nullptr);
+}
+
+template <int D>
+Statistics triangulate_into(MPI_Comm comm, std::vector<kernel::Point_d<D>>&& local, std::uint64_t global_offset,
+                            const Simplex_sink<D>& sink, const Options& options) {
+  return run<D>(comm, std::span<const kernel::Point_d<D>>(local), global_offset, sink, options, &local);
+}
+
 #define DEWALL_INSTANTIATE_MPI(D)                                                                   \
   template Statistics triangulate_into<D>(MPI_Comm, std::span<const kernel::Point_d<D>>, std::uint64_t, \
+                                          const Simplex_sink<D>&, const Options&);                 \
+  template Statistics triangulate_into<D>(MPI_Comm, std::vector<kernel::Point_d<D>>&&, std::uint64_t,  \
                                           const Simplex_sink<D>&, const Options&);
 DEWALL_INSTANTIATE_MPI(2)
 DEWALL_INSTANTIATE_MPI(3)

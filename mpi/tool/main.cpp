@@ -2,16 +2,21 @@
 // ranks of an MPI job.
 //
 //   mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--sorted | --per-rank]
+//                                          [--stream | --region-points N] [--index-bytes 4|8]
 //
 // Reading: every rank checks the header and the file size itself, then reads
-// its share (points [n·r/R, n·(r+1)/R)) with pread: no rank holds all points.
-// Triangulating: dewall::mpi::triangulate_into, whose sink writes. Writing, by
+// its share (points [n·r/R, n·(r+1)/R)) through MPI-IO (MPI_File_read_at_all):
+// no rank holds all points. Triangulating: dewall::mpi::triangulate_into,
+// whose sink writes; --stream: each rank's block in regions, whose simplices
+// are written as each region is done. Writing, by
 // default: rank 0 opens OUT through io::Output_file (a temporary renamed over
 // OUT once complete, so a failure, or a rank dying, leaves an old OUT
 // untouched), every rank writes its simplices into that temporary through
-// MPI-IO at the offset of the ranks before it (no rank holds more than its
+// MPI-IO at the offset of the ranks (and regions) before it (no rank holds more than its
 // own), and rank 0 renames it once every rank has closed it. The order is the
-// ranks' (the same bytes on every run with R ranks). --sorted: rank 0 gathers
+// ranks' (with regions: region by region, each's ranks in order; the same
+// bytes on every run with R ranks). .dwsx indices are 4 bytes, 8 beyond
+// 2^32 − 2 points (or with --index-bytes 8). --sorted: rank 0 gathers
 // the sorted lists, merges and writes them (the same bytes for every R; also
 // the way to a target written in place, a pipe or standard output).
 // --per-rank: one file per rank. Errors: every rank learns the lowest failing
@@ -65,7 +70,8 @@ struct File_error : std::runtime_error {
 
 const char* const usage_text =
     "usage: mpirun -n R dewall-mpi triangulate POINTS.dwpt -o OUT [--stats] [--sorted | --per-rank]\n"
-    "                                          [--seed-spacings X]\n"
+    "                                          [--stream | --region-points N] [--seed-spacings X]\n"
+    "                                          [--index-bytes 4|8]\n"
     "\n"
     "The Delaunay triangulation of POINTS.dwpt (the binary point format, docs/formats.md)\n"
     "computed by R ranks, each reading its share of the file; the same simplices as\n"
@@ -77,6 +83,13 @@ const char* const usage_text =
     "            merges them, and writes the file alone\n"
     "  --per-rank  each rank writes its own simplices (global point indices) to its own\n"
     "            file, OUT with .r<rank> before the extension (out.r3.dwsx)\n"
+    "  --stream  each rank builds its block in regions of at most 2^21 points, one after\n"
+    "            another, and writes each region's simplices as soon as it is done: a\n"
+    "            rank holds its block's points and one region's triangulation (about\n"
+    "            0.9 GB in 3D) instead of its whole block's; the output's order is then\n"
+    "            region by region (--sorted and --per-rank keep theirs)\n"
+    "  --region-points N   as --stream, with regions of at most N points\n"
+    "  --index-bytes W   .dwsx indices of W bytes (default: 4, or 8 beyond 2^32 - 2 points)\n"
     "  --stats   per-rank figures on standard error (points, halo, rounds, seconds, CPU\n"
     "            seconds, peak memory)\n"
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
@@ -85,6 +98,7 @@ const char* const usage_text =
 struct Arguments {
   std::string input, output;
   bool stats = false, sorted = false, per_rank = false;
+  int index_bytes = 0;  // 0: 4, or 8 when the points need it
   dewall::mpi::Options options;
 };
 
@@ -99,7 +113,19 @@ Arguments parse(int argc, char** argv) {
     if (a[i] == "--stats") r.stats = true;
     else if (a[i] == "--sorted") r.sorted = true;
     else if (a[i] == "--per-rank") r.per_rank = true;
-    else if (a[i] == "--seed-spacings") {
+    else if (a[i] == "--stream") r.options.region_points = std::uint64_t{1} << 21;
+    else if (a[i] == "--region-points" || a[i] == "--index-bytes") {
+      if (i + 1 >= a.size()) throw Usage_error(a[i] + " needs a number");
+      std::uint64_t x = 0;
+      const std::string& v = a[i + 1];
+      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+      if (ec != std::errc() || end != v.data() + v.size() || x == 0)
+        throw Usage_error(a[i] + " takes a positive whole number");
+      if (a[i] == "--region-points") r.options.region_points = x;
+      else if (x == 4 || x == 8) r.index_bytes = static_cast<int>(x);
+      else throw Usage_error("--index-bytes takes 4 or 8");
+      ++i;
+    } else if (a[i] == "--seed-spacings") {
       if (i + 1 >= a.size()) throw Usage_error("--seed-spacings needs a number");
       std::size_t used = 0;
       double x = -1;
@@ -131,76 +157,6 @@ std::uint64_t load_le(const unsigned char* p, int bytes) {
   return v;
 }
 
-/// Reads `size` bytes at `offset`. \throws File_error
-void read_at(int fd, const std::string& name, unsigned char* to, std::uint64_t size, std::uint64_t offset) {
-  while (size > 0) {
-    const ssize_t got = ::pread(fd, to, std::min<std::uint64_t>(size, 1u << 30), static_cast<off_t>(offset));
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) throw File_error(name + ": cannot read: " + std::strerror(errno));
-    if (got == 0) throw File_error(name + ": truncated while reading");
-    to += got;
-    size -= static_cast<std::uint64_t>(got);
-    offset += static_cast<std::uint64_t>(got);
-  }
-}
-
-/// This rank's share of the file: its dimension, first global index, coordinates.
-struct Share {
-  int dimension = 0;
-  std::uint64_t count = 0, first = 0;
-  std::vector<double> coordinates;
-  double seconds = 0;  // reading it
-};
-
-Share read_share(const std::string& name, int rank, int size) {
-  const int fd = ::open(name.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw File_error(name + ": cannot open file: " + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
-  struct stat st {};
-  if (::fstat(fd, &st) != 0) throw File_error(name + ": cannot stat: " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw File_error(name + ": not a regular file (each rank reads its share by offset)");
-  const auto file_size = static_cast<std::uint64_t>(st.st_size);
-  unsigned char h[dewall::io::binary_points_header_size];
-  if (file_size < sizeof h)
-    throw File_error(name + ": truncated: the header needs 24 bytes, the file has " + std::to_string(file_size));
-  read_at(fd, name, h, sizeof h, 0);
-  if (std::memcmp(h, dewall::io::binary_points_magic, 4) != 0)
-    throw File_error(name + ": not a binary point file (the first bytes are not 'DWPT')");
-  const std::uint64_t version = load_le(h + 4, 4), dimension = load_le(h + 8, 4), flags = load_le(h + 12, 4);
-  const std::uint64_t count = load_le(h + 16, 8);
-  if (version != dewall::io::binary_points_version)
-    throw File_error(name + ": unsupported binary point format version " + std::to_string(version));
-  if (dimension < 2 || dimension > 6)
-    throw File_error(name + ": dimension " + std::to_string(dimension) + " is outside 2 … 6");
-  if (flags != 0) throw File_error(name + ": unknown flags " + std::to_string(flags));
-  if (count > (std::uint64_t{1} << 58) / dimension) throw File_error(name + ": impossible point count");
-  const std::uint64_t expected = dewall::io::binary_points_file_size(count, static_cast<int>(dimension));
-  const std::string announced = std::to_string(count) + " points of dimension " + std::to_string(dimension);
-  if (file_size < expected)
-    throw File_error(name + ": truncated: " + announced + " need " + std::to_string(expected) + " bytes, the file has " +
-                     std::to_string(file_size));
-  if (file_size > expected)
-    throw File_error(name + ": " + std::to_string(file_size - expected) + " bytes after the last point");
-  if (count >= (std::uint64_t{1} << 32) - 1)
-    throw File_error(name + ": " + announced + ": the simplex formats hold 32-bit indices (at most 2^32 - 2 points)");
-  Share s;
-  s.dimension = static_cast<int>(dimension);
-  s.count = count;
-  s.first = static_cast<std::uint64_t>(static_cast<U128>(count) * static_cast<unsigned>(rank) /
-                                        static_cast<unsigned>(size));
-  const auto last = static_cast<std::uint64_t>(static_cast<U128>(count) * static_cast<unsigned>(rank + 1) /
-                                               static_cast<unsigned>(size));
-  s.coordinates.resize((last - s.first) * dimension);
-  read_at(fd, name, reinterpret_cast<unsigned char*>(s.coordinates.data()), s.coordinates.size() * 8,
-          dewall::io::binary_points_header_size + s.first * dimension * 8);
-  if constexpr (std::endian::native == std::endian::big)
-    for (double& x : s.coordinates) x = std::bit_cast<double>(__builtin_bswap64(std::bit_cast<std::uint64_t>(x)));
-  return s;
-}
-
 /// Collective: runs f on this rank; on any rank's failure every rank throws
 /// the lowest failing rank's error, its kind kept (File_error counts as file).
 template <class F>
@@ -220,6 +176,112 @@ void step(MPI_Comm comm, F&& f) {
   if (agreed.kind != Error_kind::none) dewall::mpi::throw_error(agreed);
 }
 
+/// This rank's share of the file: its dimension, first global index, coordinates.
+struct Share {
+  int dimension = 0;
+  std::uint64_t count = 0, first = 0;
+  std::vector<double> coordinates;
+  double seconds = 0;  // reading it
+};
+
+std::string mpi_error_text(int code) {
+  char text[MPI_MAX_ERROR_STRING];
+  int length = 0;
+  MPI_Error_string(code, text, &length);
+  return std::string(text, static_cast<std::size_t>(length));
+}
+
+/// Collective: reads `size` bytes at `offset` into `to` with MPI_File_read_at_all
+/// (every rank calls it equally often: as many times as the rank with the
+/// most to read needs). \throws File_error, on every rank alike
+void read_all_at(MPI_Comm comm, MPI_File fh, const std::string& name, unsigned char* to, std::uint64_t size,
+                 std::uint64_t offset) {
+  constexpr std::uint64_t chunk = std::uint64_t{1} << 30;  // MPI's int counts
+  std::uint64_t calls = (size + chunk - 1) / chunk, most = 0;
+  MPI_Allreduce(&calls, &most, 1, MPI_UINT64_T, MPI_MAX, comm);
+  std::string error;
+  for (std::uint64_t k = 0; k < most; ++k) {
+    const std::uint64_t at = std::min(size, k * chunk), n = std::min(chunk, size - at);
+    MPI_Status status;
+    const int rc = MPI_File_read_at_all(fh, static_cast<MPI_Offset>(offset + at), to + at, static_cast<int>(n),
+                                        MPI_BYTE, &status);
+    int got = 0;
+    if (rc == MPI_SUCCESS) MPI_Get_count(&status, MPI_BYTE, &got);
+    if (error.empty() && rc != MPI_SUCCESS) error = name + ": cannot read: " + mpi_error_text(rc);
+    else if (error.empty() && static_cast<std::uint64_t>(got) != n) error = name + ": truncated while reading";
+  }
+  step(comm, [&] {
+    if (!error.empty()) throw File_error(error);
+  });
+}
+
+/// Collective: this rank's share of the file, points [n·r/R, n·(r+1)/R), read
+/// through MPI-IO (no rank reads more than its share and the header).
+/// \throws File_error, Invalid_input..., on every rank alike (step)
+Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
+  step(comm, [&] {
+    struct stat st {};
+    if (::stat(name.c_str(), &st) != 0) throw File_error(name + ": cannot open file: " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throw File_error(name + ": not a regular file (each rank reads its share by offset)");
+  });
+  MPI_File fh = MPI_FILE_NULL;
+  const int opened = MPI_File_open(comm, name.c_str(), MPI_MODE_RDONLY, MPI_INFO_NULL, &fh);
+  step(comm, [&] {
+    if (opened != MPI_SUCCESS) throw File_error(name + ": cannot open file: " + mpi_error_text(opened));
+  });
+  struct Closer {  // collective: every rank leaves together (each error below is agreed on)
+    MPI_File& fh;
+    ~Closer() { MPI_File_close(&fh); }
+  } closer{fh};
+  Share s;
+  std::uint64_t offset = 0, bytes = 0;
+  step(comm, [&] {
+    MPI_Offset length = 0;
+    const int rc = MPI_File_get_size(fh, &length);
+    if (rc != MPI_SUCCESS) throw File_error(name + ": cannot stat: " + mpi_error_text(rc));
+    const auto file_size = static_cast<std::uint64_t>(length);
+    unsigned char h[dewall::io::binary_points_header_size];
+    if (file_size < sizeof h)
+      throw File_error(name + ": truncated: the header needs 24 bytes, the file has " + std::to_string(file_size));
+    MPI_Status status;
+    const int read = MPI_File_read_at(fh, 0, h, static_cast<int>(sizeof h), MPI_BYTE, &status);
+    int got = 0;
+    if (read == MPI_SUCCESS) MPI_Get_count(&status, MPI_BYTE, &got);
+    if (read != MPI_SUCCESS) throw File_error(name + ": cannot read: " + mpi_error_text(read));
+    if (got != static_cast<int>(sizeof h)) throw File_error(name + ": truncated while reading");
+    if (std::memcmp(h, dewall::io::binary_points_magic, 4) != 0)
+      throw File_error(name + ": not a binary point file (the first bytes are not 'DWPT')");
+    const std::uint64_t version = load_le(h + 4, 4), dimension = load_le(h + 8, 4), flags = load_le(h + 12, 4);
+    const std::uint64_t count = load_le(h + 16, 8);
+    if (version != dewall::io::binary_points_version)
+      throw File_error(name + ": unsupported binary point format version " + std::to_string(version));
+    if (dimension < 2 || dimension > 6)
+      throw File_error(name + ": dimension " + std::to_string(dimension) + " is outside 2 … 6");
+    if (flags != 0) throw File_error(name + ": unknown flags " + std::to_string(flags));
+    if (count > (std::uint64_t{1} << 58) / dimension) throw File_error(name + ": impossible point count");
+    const std::uint64_t expected = dewall::io::binary_points_file_size(count, static_cast<int>(dimension));
+    const std::string announced = std::to_string(count) + " points of dimension " + std::to_string(dimension);
+    if (file_size < expected)
+      throw File_error(name + ": truncated: " + announced + " need " + std::to_string(expected) +
+                       " bytes, the file has " + std::to_string(file_size));
+    if (file_size > expected)
+      throw File_error(name + ": " + std::to_string(file_size - expected) + " bytes after the last point");
+    s.dimension = static_cast<int>(dimension);
+    s.count = count;
+    s.first = static_cast<std::uint64_t>(static_cast<U128>(count) * static_cast<unsigned>(rank) /
+                                          static_cast<unsigned>(size));
+    const auto last = static_cast<std::uint64_t>(static_cast<U128>(count) * static_cast<unsigned>(rank + 1) /
+                                                 static_cast<unsigned>(size));
+    s.coordinates.resize((last - s.first) * dimension);
+    offset = dewall::io::binary_points_header_size + s.first * dimension * 8;
+    bytes = s.coordinates.size() * 8;
+  });
+  read_all_at(comm, fh, name, reinterpret_cast<unsigned char*>(s.coordinates.data()), bytes, offset);
+  if constexpr (std::endian::native == std::endian::big)
+    for (double& x : s.coordinates) x = std::bit_cast<double>(__builtin_bswap64(std::bit_cast<std::uint64_t>(x)));
+  return s;
+}
+
 enum class Format { binary, ele, plain };
 
 Format format_of(const std::string& path) {
@@ -233,30 +295,31 @@ Format format_of(const std::string& path) {
   return ends(".dwsx") ? Format::binary : ends(".ele") ? Format::ele : Format::plain;
 }
 
-/// The file's header: .dwsx's (with the count) or .ele's; the plain list has none.
-std::string header_of(Format f, int dimension, std::uint64_t count) {
+/// The file's header: .dwsx's (with the count and the index width) or .ele's;
+/// the plain list has none.
+std::string header_of(Format f, int dimension, std::uint64_t count, int index_bytes) {
   if (f == Format::binary) {
     std::ostringstream out;
-    dewall::io::write_binary_simplices_header(out, dimension, count);
+    dewall::io::write_binary_simplices_header(out, dimension, count, index_bytes);
     return out.str();
   }
   if (f == Format::ele) return std::to_string(count) + ' ' + std::to_string(dimension + 1) + " 0\n";
   return {};
 }
 
-/// Appends the file's bytes for `batch` (32-bit indices, as `dewall` writes
-/// them): .dwsx little-endian, .ele rows numbered from `row`, else the plain list.
+/// Appends the file's bytes for `batch`: .dwsx little-endian, `index_bytes`
+/// (4 or 8) per index, .ele rows numbered from `row`, else the plain list.
 template <int D>
 void append_rows(std::string& out, std::span<const dewall::mpi::Global_simplex<D>> batch, Format f,
-                 std::uint64_t& row) {
+                 std::uint64_t& row, int index_bytes) {
   char number[24];
   const auto put = [&](std::uint64_t x) { out.append(number, std::to_chars(number, number + sizeof number, x).ptr); };
   for (const auto& s : batch) {
     if (f == Format::binary) {
-      char b[4 * (D + 1)];
+      char b[8 * (D + 1)];
       for (int i = 0; i <= D; ++i)
-        for (int k = 0; k < 4; ++k) b[4 * i + k] = static_cast<char>(s[i] >> (8 * k));
-      out.append(b, sizeof b);
+        for (int k = 0; k < index_bytes; ++k) b[index_bytes * i + k] = static_cast<char>(s[i] >> (8 * k));
+      out.append(b, static_cast<std::size_t>(index_bytes) * (D + 1));
       continue;
     }
     if (f == Format::ele) {
@@ -271,56 +334,72 @@ void append_rows(std::string& out, std::span<const dewall::mpi::Global_simplex<D
   }
 }
 
-std::string mpi_error_text(int code) {
-  char text[MPI_MAX_ERROR_STRING];
-  int length = 0;
-  MPI_Error_string(code, text, &length);
-  return std::string(text, static_cast<std::size_t>(length));
-}
-
 /// The output written by every rank at once through MPI-IO into the
 /// temporary that rank 0's io::Output_file created (rank 0 renames it into
-/// place once every rank has written and closed it). Each rank's simplices
-/// go at the offset the ranks before it fill (MPI_Exscan of the counts):
-/// .dwsx streamed as the simplices come (4 MiB at a time), the text formats
-/// formatted in memory first (their lengths vary). Write failures are
-/// recorded, not thrown (the sink runs inside dewall::mpi; the ranks agree
-/// afterwards).
+/// place once every rank has written and closed it). The simplices come in
+/// parts (one per region, Simplex_sink); each rank's simplices of a part go
+/// at the offset the parts before and the ranks before it in this part fill
+/// (MPI_Exscan of the counts, in start): .dwsx streamed as the simplices
+/// come (4 MiB at a time), its header, whose count is known last, written by
+/// rank 0 at the end; the text formats formatted in memory, then written
+/// (their lengths vary, and .ele's header leads). Without regions: rank 0's
+/// simplices, then rank 1's, ... Write failures are recorded, not thrown (the
+/// sink runs inside dewall::mpi; the ranks agree afterwards).
 template <int D>
 class Collective_writer {
  public:
-  Collective_writer(MPI_Comm comm, MPI_File fh, Format f, std::string name)
-      : comm_(comm), fh_(fh), format_(f), name_(std::move(name)) {
+  Collective_writer(MPI_Comm comm, MPI_File fh, Format f, std::string name, int index_bytes)
+      : comm_(comm), fh_(fh), format_(f), name_(std::move(name)), index_bytes_(index_bytes) {
     MPI_Comm_rank(comm, &rank_);
   }
-  /// Collective (every rank is called, dewall::mpi's contract).
+  /// Collective (every rank is called, dewall::mpi's contract): a part begins.
   void start(std::uint64_t count) {
+    if (format_ == Format::binary) flush();  // the previous part's rest, at its offset
     std::uint64_t before = 0, total = 0;
     MPI_Exscan(&count, &before, 1, MPI_UINT64_T, MPI_SUM, comm_);
     if (rank_ == 0) before = 0;  // MPI_Exscan leaves rank 0's undefined
     MPI_Allreduce(&count, &total, 1, MPI_UINT64_T, MPI_SUM, comm_);
-    row_ = before;
+    row_ = written_ + before;
+    written_ += total;
     try {  // this rank's alone, after the collective calls: recorded
-      if (format_ == Format::binary) buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
-      if (rank_ == 0) buffer_ += header_of(format_, D, total);
-      if (format_ == Format::binary)
-        offset_ = (rank_ == 0 ? 0 : header_of(format_, D, 0).size()) + before * (D + 1) * 4;
+      if (format_ == Format::binary) {
+        buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
+        offset_ = header_of(format_, D, 0, index_bytes_).size() + row_ * (D + 1) * static_cast<std::uint64_t>(index_bytes_);
+      } else {
+        part_begin_.push_back(buffer_.size());
+      }
     } catch (const std::exception& e) {
-      error_ = name_ + ": " + e.what();
+      if (error_.empty()) error_ = name_ + ": " + e.what();
     }
   }
   void take(std::span<const dewall::mpi::Global_simplex<D>> batch) {
-    append_rows<D>(buffer_, batch, format_, row_);
+    append_rows<D>(buffer_, batch, format_, row_, index_bytes_);
     if (format_ == Format::binary && buffer_.size() >= flush_bytes) flush();
   }
-  /// Collective: writes what is left (the text formats: everything).
+  /// Collective: writes what is left (the text formats: everything) and the header.
   void finish() {
-    if (format_ != Format::binary) {
-      std::uint64_t bytes = buffer_.size(), before = 0;
-      MPI_Exscan(&bytes, &before, 1, MPI_UINT64_T, MPI_SUM, comm_);
-      offset_ = rank_ == 0 ? 0 : before;
+    const std::string header = header_of(format_, D, written_, index_bytes_);
+    if (format_ == Format::binary) {
+      flush();
+      if (rank_ == 0) write(header.data(), header.size(), 0);
+      return;
     }
-    flush();
+    // Each part's text goes after the header, the earlier parts' text (all
+    // ranks') and this part's text of the ranks before this one.
+    const std::size_t parts = part_begin_.size();  // the same on every rank
+    std::vector<std::uint64_t> bytes(parts), before(parts, 0), total(parts, 0);
+    for (std::size_t p = 0; p < parts; ++p)
+      bytes[p] = (p + 1 < parts ? part_begin_[p + 1] : buffer_.size()) - part_begin_[p];
+    MPI_Exscan(bytes.data(), before.data(), static_cast<int>(parts), MPI_UINT64_T, MPI_SUM, comm_);
+    if (rank_ == 0) std::fill(before.begin(), before.end(), 0);
+    MPI_Allreduce(bytes.data(), total.data(), static_cast<int>(parts), MPI_UINT64_T, MPI_SUM, comm_);
+    if (rank_ == 0) write(header.data(), header.size(), 0);
+    std::uint64_t at = header.size();
+    for (std::size_t p = 0; p < parts; ++p) {
+      write(buffer_.data() + part_begin_[p], bytes[p], at + before[p]);
+      at += total[p];
+    }
+    std::string().swap(buffer_);
   }
   /// The first write error on this rank, or empty.
   const std::string& error() const { return error_; }
@@ -328,25 +407,30 @@ class Collective_writer {
  private:
   static constexpr std::size_t flush_bytes = std::size_t{1} << 22;  // .dwsx: written 4 MiB at a time
   void flush() {
-    for (std::size_t at = 0; at < buffer_.size() && error_.empty();) {
-      const int n = static_cast<int>(std::min<std::size_t>(buffer_.size() - at, std::size_t{1} << 30));
+    write(buffer_.data(), buffer_.size(), offset_);
+    offset_ += buffer_.size();
+    buffer_.clear();
+  }
+  void write(const char* data, std::size_t size, std::uint64_t offset) {
+    for (std::size_t at = 0; at < size && error_.empty();) {
+      const int n = static_cast<int>(std::min<std::size_t>(size - at, std::size_t{1} << 30));
       MPI_Status status;
-      const int rc = MPI_File_write_at(fh_, static_cast<MPI_Offset>(offset_), buffer_.data() + at, n, MPI_BYTE, &status);
+      const int rc = MPI_File_write_at(fh_, static_cast<MPI_Offset>(offset + at), data + at, n, MPI_BYTE, &status);
       int written = 0;
       if (rc == MPI_SUCCESS) MPI_Get_count(&status, MPI_BYTE, &written);
       if (rc != MPI_SUCCESS) error_ = name_ + ": write error: " + mpi_error_text(rc);
       else if (written != n) error_ = name_ + ": write error: short write";
       at += static_cast<std::size_t>(n);
-      offset_ += static_cast<std::uint64_t>(n);
     }
-    buffer_.clear();
   }
   MPI_Comm comm_;
   MPI_File fh_;
   Format format_;
   std::string name_, buffer_, error_;
+  int index_bytes_;
   int rank_ = 0;
-  std::uint64_t offset_ = 0, row_ = 0;
+  std::uint64_t offset_ = 0, row_ = 0, written_ = 0;  // written_: the simplices of the parts begun, all ranks
+  std::vector<std::size_t> part_begin_;               // text formats: where each part's text begins in buffer_
 };
 
 /// The statistics line of every rank, printed by rank 0.
@@ -354,7 +438,7 @@ void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double r
                       int rank, int size) {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  const std::array<double, 18> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
+  const std::array<double, 19> mine = {static_cast<double>(st.local_points), static_cast<double>(st.block_points),
                                        static_cast<double>(st.halo_points),  static_cast<double>(st.rounds),
                                        static_cast<double>(st.builds),       static_cast<double>(st.queries_sent),
                                        static_cast<double>(st.simplices),    st.decompose_seconds,
@@ -364,20 +448,20 @@ void print_statistics(MPI_Comm comm, const dewall::mpi::Statistics& st, double r
                                        static_cast<double>(usage.ru_maxrss) / 1024.0,
                                        static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
                                            1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec),
-                                       st.index_seconds, read};
+                                       st.index_seconds, read, static_cast<double>(st.regions)};
   std::vector<double> every(rank == 0 ? mine.size() * static_cast<std::size_t>(size) : 0);
   MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, every.data(), static_cast<int>(mine.size()),
              MPI_DOUBLE, 0, comm);
   if (rank != 0) return;
   std::fprintf(stderr,
-               "rank   points    block    halo  halo%%  rounds builds queries simplices | seconds:   read decompose"
+               "rank   points    block    halo  halo%% regions rounds builds queries simplices | seconds:   read decompose"
                "  index  build verify   halo finish  write |  total    cpu | peak MB\n");
   for (int q = 0; q < size; ++q) {
     const double* e = &every[static_cast<std::size_t>(q) * mine.size()];
     std::fprintf(stderr,
-                 "%4d %8.0f %8.0f %7.0f %6.1f %6.0f %6.0f %7.0f %9.0f |          %6.3f %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
+                 "%4d %8.0f %8.0f %7.0f %6.1f %7.0f %6.0f %6.0f %7.0f %9.0f |          %6.3f %9.3f %6.3f %6.3f %6.3f %6.3f %6.3f %6.3f "
                  "| %6.3f %6.3f | %7.0f\n",
-                 q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[3], e[4], e[5], e[6], e[17], e[7], e[16], e[8], e[9],
+                 q, e[0], e[1], e[2], e[1] > 0 ? 100.0 * e[2] / e[1] : 0.0, e[18], e[3], e[4], e[5], e[6], e[17], e[7], e[16], e[8], e[9],
                  e[10], e[11], e[12], e[13], e[15], e[14]);
   }
 }
@@ -414,7 +498,8 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
     for (int j = 0; j < D; ++j) points[i][j] = share.coordinates[i * D + static_cast<std::size_t>(j)];
   std::vector<double>().swap(share.coordinates);
   const Format format = format_of(args.output);
-  const std::span<const dewall::kernel::Point_d<D>> local(points);
+  // 8-byte .dwsx indices when 4 cannot hold them (an index up to n − 1; 2^32 − 1 is no index in dewall's files).
+  const int index_bytes = args.index_bytes ? args.index_bytes : share.count > (std::uint64_t{1} << 32) - 2 ? 8 : 4;
   dewall::mpi::Statistics st;
   double write_seconds = 0;
   const auto report_invalid = [&](const dewall::Invalid_input& e) {
@@ -427,35 +512,55 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
     const std::string name = per_rank_name(args.output, rank);
     std::unique_ptr<dewall::io::Output_file> file;
     step(comm, [&] { file = std::make_unique<dewall::io::Output_file>(name); });
-    std::string text;
-    std::uint64_t row = 0;
+    // The simplices come in parts (one per region): .dwsx's count is patched
+    // in at the end, .ele's rows are kept until their count is known.
     struct Sink {
       dewall::io::Output_file& file;
-      std::string& text;
-      std::uint64_t& row;
       Format format;
-      void start(std::uint64_t count) {
-        text = header_of(format, D, count);
-        file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+      int index_bytes;
+      std::string text, kept;
+      std::uint64_t row = 0, count = 0;
+      bool begun = false;
+      void start(std::uint64_t n) {
+        count += n;
+        if (!begun && format == Format::binary) {
+          text = header_of(format, D, dewall::io::binary_simplices_unknown_count, index_bytes);
+          file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+        }
+        begun = true;
       }
       void take(std::span<const S> batch) {
+        if (format == Format::ele) return append_rows<D>(kept, batch, format, row, index_bytes);
         text.clear();
-        append_rows<D>(text, batch, format, row);
+        append_rows<D>(text, batch, format, row, index_bytes);
         file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
       }
-    } sink{*file, text, row, format};
+      void end() {
+        if (format == Format::binary) {
+          unsigned char le[8];
+          for (int k = 0; k < 8; ++k) le[k] = static_cast<unsigned char>(count >> (8 * k));
+          file.patch(dewall::io::binary_simplices_count_offset, le, sizeof le);  // false (a device): kept unknown
+        } else if (format == Format::ele) {
+          text = header_of(format, D, count, index_bytes);
+          file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
+          file.stream().write(kept.data(), static_cast<std::streamsize>(kept.size()));
+        }
+      }
+    } sink{*file, format, index_bytes, {}, {}};
     std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
     dewall::mpi::Simplex_sink<D> s;
     s.start = [&](std::uint64_t n) { guarded(failed, [&] { sink.start(n); }); };
     s.take = [&](std::span<const S> b) { guarded(failed, [&] { sink.take(b); }); };
     try {
-      st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+      st = dewall::mpi::triangulate_into<D>(comm, std::move(points), share.first, s, args.options);
     } catch (const dewall::Invalid_input& e) {
       return report_invalid(e);
     }
     const double t1 = MPI_Wtime();
     step(comm, [&] {
       if (failed) std::rethrow_exception(failed);
+      file->stream().flush();
+      sink.end();
       file->check();
     });
     step(comm, [&] { file->commit(); });
@@ -484,13 +589,13 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       step(comm, [&] {
         if (rc != MPI_SUCCESS) throw File_error(args.output + ": cannot open its temporary for MPI-IO: " + mpi_error_text(rc));
       });
-      Collective_writer<D> writer(comm, fh, format, args.output);
+      Collective_writer<D> writer(comm, fh, format, args.output, index_bytes);
       std::exception_ptr failed;  // the sink's (this rank's alone): the ranks agree below
       dewall::mpi::Simplex_sink<D> s;
       s.start = [&](std::uint64_t n) { writer.start(n); };  // collective: must not be skipped
       s.take = [&](std::span<const S> b) { guarded(failed, [&] { writer.take(b); }); };
       try {
-        st = dewall::mpi::triangulate_into<D>(comm, local, share.first, s, args.options);
+        st = dewall::mpi::triangulate_into<D>(comm, std::move(points), share.first, s, args.options);
       } catch (...) {
         MPI_File_close(&fh);  // every rank is here (the library's errors are collective); rank 0's file removes the temporary
         try {
@@ -514,7 +619,8 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
     } else {
       dewall::mpi::Result<D> r;
       try {
-        r = dewall::mpi::triangulate<D>(comm, local, share.first, args.options);
+        r = dewall::mpi::triangulate<D>(comm, std::span<const dewall::kernel::Point_d<D>>(points), share.first,
+                                        args.options);
       } catch (const dewall::Invalid_input& e) {
         return report_invalid(e);
       }
@@ -549,12 +655,12 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       }
       step(comm, [&] {
         if (rank != 0) return;
-        std::string text = header_of(format, D, all.size());
+        std::string text = header_of(format, D, all.size(), index_bytes);
         std::uint64_t row = 0;
         std::ostream& out = file->stream();
         for (std::size_t k = 0; k < all.size() && out; k += 4096) {
           append_rows<D>(text, std::span<const S>(all).subspan(k, std::min<std::size_t>(4096, all.size() - k)), format,
-                         row);
+                         row, index_bytes);
           out.write(text.data(), static_cast<std::streamsize>(text.size()));
           text.clear();
         }
@@ -583,7 +689,7 @@ int run(int argc, char** argv, int rank, int size) {
   try {
     Share share;
     const double t = MPI_Wtime();
-    step(MPI_COMM_WORLD, [&] { share = read_share(args.input, rank, size); });
+    share = read_share(MPI_COMM_WORLD, args.input, rank, size);
     share.seconds = MPI_Wtime() - t;
     switch (share.dimension) {
       case 2: return triangulate<2>(MPI_COMM_WORLD, args, std::move(share), rank, size);

@@ -4,6 +4,9 @@
 #     for 1, 2, 3 and 4 ranks (3D; 1 and 3 in 2D), has the same bytes on a
 #     second run; with --sorted the same bytes for every number of ranks;
 #   * .ele and the plain list (MPI-IO), standard output, --per-rank files;
+#   * regions (--region-points, --stream): canonical, the same bytes on a
+#     second run, .ele, per-rank files, --sorted the same bytes as without;
+#   * 8-byte .dwsx indices (--index-bytes 8): canonical;
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
 #   * no -o: exit 2, the usage once;
@@ -59,6 +62,58 @@ cat u3.parts.r0.txt u3.parts.r1.txt u3.parts.r2.txt >u3.parts.txt 2>/dev/null
 run 3 triangulate u3.dwpt -o u3.3.txt
 cmp -s u3.3.txt u3.parts.txt || fail "u3: --per-rank's files differ from the parts of the one file"
 echo "text formats, standard output, per-rank files: canonical"
+
+# Regions (--region-points, as --stream with small regions): canonical, the
+# same bytes on a second run, the same simplices as without regions; .ele and
+# per-rank files; --sorted the same bytes as without regions.
+count_of() { od -An -t u8 -j 16 -N 8 "$1" | tr -d ' '; }  # a .dwsx header's count
+for ranks in 1 2 3; do
+  run "$ranks" triangulate u3.dwpt -o "u3.$ranks.regions.dwsx" --region-points 300 --stats
+  [ "$status" -eq 0 ] || { fail "u3 on $ranks ranks with regions: exit $status"; cat run.log >&2; continue; }
+  awk '$1 == "0" && $6 > 1 { ok = 1 } END { exit !ok }' run.log || { fail "u3 with regions: not in regions"; cat run.log >&2; }
+  "$dewall" certify u3.dwpt "u3.$ranks.regions.dwsx" --canonical >certify.log 2>&1 ||
+    { fail "u3 on $ranks ranks with regions: not CGAL's triangulation"; cat certify.log >&2; }
+done
+run 3 triangulate u3.dwpt -o u3.again.regions.dwsx --region-points 300
+cmp -s u3.3.regions.dwsx u3.again.regions.dwsx || fail "u3 with regions: two runs on 3 ranks differ"
+run 2 triangulate u3.dwpt -o u3.2.regions.sorted.dwsx --region-points 300 --sorted
+cmp -s u3.1.sorted.dwsx u3.2.regions.sorted.dwsx || fail "u3 with regions, --sorted: the bytes differ from 1 rank's"
+run 3 triangulate b2.dwpt -o b2.3.regions.ele --stream
+[ "$status" -eq 0 ] && "$dewall" certify b2.dwpt b2.3.regions.ele --canonical >certify.log 2>&1 ||
+  { fail "b2 on 3 ranks with --stream as .ele"; cat run.log certify.log >&2; }
+run 3 triangulate u3.dwpt -o u3.3.regions.ele --region-points 250
+[ "$status" -eq 0 ] && "$dewall" certify u3.dwpt u3.3.regions.ele --canonical >certify.log 2>&1 ||
+  { fail "u3 on 3 ranks with regions as .ele"; cat run.log certify.log >&2; }
+run 3 triangulate u3.dwpt -o u3.3.regions.txt --region-points 250
+run 3 triangulate u3.dwpt -o u3.rparts.txt --region-points 250 --per-rank
+cat u3.rparts.r0.txt u3.rparts.r1.txt u3.rparts.r2.txt | sort >u3.rparts.sorted.txt
+sort u3.3.regions.txt | cmp -s - u3.rparts.sorted.txt ||
+  fail "u3 with regions: --per-rank's files differ from the one file"
+run 3 triangulate u3.dwpt -o u3.rparts.dwsx --region-points 250 --per-rank
+counted=0
+for r in 0 1 2; do
+  c=$(count_of "u3.rparts.r$r.dwsx")
+  [ "$(stat -c %s "u3.rparts.r$r.dwsx")" -eq $((24 + 16 * c)) ] || fail "u3 with regions: u3.rparts.r$r.dwsx's size"
+  counted=$((counted + c))
+done
+[ "$counted" -eq "$(count_of u3.3.regions.dwsx)" ] || fail "u3 with regions: the per-rank .dwsx counts"
+echo "regions: canonical, the same bytes on a second run, .ele, per-rank files"
+
+# 8-byte indices (what more than 2^32 - 2 points get), forced on a small set.
+run 2 triangulate u3.dwpt -o u3.wide.dwsx --index-bytes 8
+[ "$status" -eq 0 ] && "$dewall" certify u3.dwpt u3.wide.dwsx --canonical >certify.log 2>&1 ||
+  { fail "u3 with 8-byte indices"; cat run.log certify.log >&2; }
+[ "$(od -An -t u4 -j 12 -N 4 u3.wide.dwsx | tr -d ' ')" = 8 ] || fail "u3.wide.dwsx: the header's index width is not 8"
+[ "$(stat -c %s u3.wide.dwsx)" -eq $((24 + 32 * $(count_of u3.wide.dwsx))) ] || fail "u3.wide.dwsx: its size"
+run 2 triangulate u3.dwpt -o u3.wide.sorted.dwsx --index-bytes 8 --sorted
+"$dewall" certify u3.dwpt u3.wide.sorted.dwsx --canonical >certify.log 2>&1 ||
+  { fail "u3 with 8-byte indices, --sorted"; cat run.log certify.log >&2; }
+run 3 triangulate u3.dwpt -o u3.wide.regions.dwsx --index-bytes 8 --region-points 300
+"$dewall" certify u3.dwpt u3.wide.regions.dwsx --canonical >certify.log 2>&1 ||
+  { fail "u3 with 8-byte indices and regions"; cat run.log certify.log >&2; }
+run 2 triangulate u3.dwpt -o u3.bad.dwsx --index-bytes 6
+[ "$status" -eq 2 ] || fail "--index-bytes 6: exit $status, expected 2"
+echo "8-byte indices: canonical"
 
 # The errors. old.txt must survive each of them.
 echo "old contents" >old.txt

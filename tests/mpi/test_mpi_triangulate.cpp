@@ -3,7 +3,8 @@
 //
 // Every rank makes the same point set (fixed seeds; 2D and 3D: eight kinds,
 // 4D: two, 5D and 6D: a few uniform points), passes its share (uneven shares,
-// and some ranks none), and rank 0 gathers the simplices and checks:
+// and some ranks none; some cases again with each block built in regions,
+// Options::region_points), and rank 0 gathers the simplices and checks:
 //  * no simplex twice, each positively oriented (exact orientation), in the
 //    canonical form of Global_simplex;
 //  * the set equals CGAL's (tests/support/cgal_reference.hpp);
@@ -56,14 +57,20 @@ std::uint64_t first_of(Shares s, std::uint64_t n, int r) {
   return 0;
 }
 
+/// Regions (Options::region_points) in a case: none, or about five per rank.
+enum class Regions { none, some };
+
 template <int D>
-void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& points, Shares shares) {
+void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& points, Shares shares,
+                Regions regions = Regions::none) {
   const std::uint64_t n = points.size();
   const std::uint64_t b = first_of(shares, n, rank), e = rank + 1 == size ? n : first_of(shares, n, rank + 1);
   std::span<const kernel::Point_d<D>> local(points.data() + b, e - b);
+  mpi::Options options;
+  if (regions == Regions::some) options.region_points = std::max<std::uint64_t>(20, n / (5 * static_cast<std::uint64_t>(size)));
   mpi::Result<D> r;
   try {
-    r = mpi::triangulate<D>(MPI_COMM_WORLD, local, b);
+    r = mpi::triangulate<D>(MPI_COMM_WORLD, local, b, options);
   } catch (const std::exception& x) {
     fail(name + ": threw " + x.what());
     return;
@@ -88,11 +95,12 @@ void check_case(const std::string& name, const std::vector<kernel::Point_d<D>>& 
               MPI_COMM_WORLD);
   std::uint64_t rounds = r.statistics.rounds, max_rounds = 0, halo = r.statistics.halo_points, halo_total = 0;
   MPI_Reduce(&rounds, &max_rounds, 1, MPI_UINT64_T, MPI_MAX, 0, MPI_COMM_WORLD);
+  if (regions == Regions::some && r.statistics.regions < 2 && n > 200) fail(name + ": built in one region");
   MPI_Reduce(&halo, &halo_total, 1, MPI_UINT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
   if (rank != 0) return;
 
-  const std::string label = name + " (" + std::to_string(D) + "D, " + std::to_string(n) + " points, " +
-                            std::to_string(size) + " ranks)";
+  const std::string label = name + (regions == Regions::some ? ", in regions" : "") + " (" + std::to_string(D) +
+                            "D, " + std::to_string(n) + " points, " + std::to_string(size) + " ranks)";
   test::Simplex_set<D> got;
   std::vector<certify::Simplex_indices<D>> rows;
   bool oriented = true, canonical = true;
@@ -188,6 +196,13 @@ template <int D>
 void cases(std::size_t n) {
   using io::Point_kind;
   check_case<D>("uniform", generated<D>(Point_kind::uniform, n, 1), Shares::even);
+  // Regions: each rank's block built region after region (a few kinds; the rest is the same code).
+  check_case<D>("uniform", generated<D>(Point_kind::uniform, n, 1), Shares::growing, Regions::some);
+  check_case<D>("bubbles", generated<D>(Point_kind::bubbles, n, 3), Shares::even, Regions::some);
+  check_case<D>("lattice (every point ties)", generated<D>(Point_kind::grid, n, 0), Shares::gaps, Regions::some);
+  check_case<D>("cospherical (lattice sphere)", generated<D>(Point_kind::lattice_sphere, n / 2, 0), Shares::even,
+                Regions::some);
+  check_case<D>("duplicates across ranks", with_duplicates<D>(n, 6), Shares::even, Regions::some);
   check_case<D>("uniform, uneven shares", generated<D>(Point_kind::uniform, n, 2), Shares::growing);
   check_case<D>("bubbles", generated<D>(Point_kind::bubbles, n, 3), Shares::even);
   check_case<D>("lattice (every point ties)", generated<D>(Point_kind::grid, n, 0), Shares::gaps);
@@ -226,6 +241,7 @@ int main(int argc, char** argv) {
   cases<2>(3000);
   cases<3>(2500);
   check_case<4>("uniform", generated<4>(io::Point_kind::uniform, 600, 11), Shares::even);
+  check_case<4>("uniform", generated<4>(io::Point_kind::uniform, 600, 11), Shares::even, Regions::some);
   check_case<4>("lattice (every point ties)", generated<4>(io::Point_kind::grid, 600, 0), Shares::even);
   check_case<5>("uniform", generated<5>(io::Point_kind::uniform, 150, 12), Shares::growing);
   check_case<6>("uniform", generated<6>(io::Point_kind::uniform, 60, 13), Shares::even);
