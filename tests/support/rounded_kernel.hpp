@@ -48,14 +48,6 @@ class Rounded_kernel<D, Bits, true> : public Rounded_kernel<D, Bits, false> {
   static constexpr double approximate_coordinates_error = 1.0 / (1 << Bits);
 };
 
-/// The same rounding declared exact (a false claim): the search then prunes as
-/// the code before the error bound did; the counter-check of the tests.
-template <int D, int Bits>
-class Misdeclared_rounded_kernel : public Rounded_kernel<D, Bits, false> {
- public:
-  static constexpr double approximate_coordinates_error = 0;
-};
-
 static_assert(kernel::DelaunayKernel<Rounded_kernel<3, 6, false>> && kernel::DelaunayKernel<Rounded_kernel<3, 6, true>>);
 
 }  // namespace dewall::test
