@@ -60,7 +60,7 @@ int main(int argc, char** argv) {
       DT dt;
       auto& tds = dt.tds();
       tds.clear();
-      dewall::cgal::detail::Tds3_access<DT, K::Point_3, dewall::cgal::detail::Item_traits<K::Point_3>>
+      dewall::cgal::detail::Tds_access<3, DT, K::Point_3, dewall::cgal::detail::Item_traits<K::Point_3>>
           access{tds, tds.create_vertex(), points};
       dt.set_infinite_vertex(access.infinite);
       tds.set_dimension(3);

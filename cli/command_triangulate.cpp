@@ -2,9 +2,11 @@
 //                    [--region-points N] [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]
 #include <cstdio>
 #include <optional>
+#include <string>
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
+#include "dewall/options.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -84,7 +86,10 @@ int command_triangulate(int argc, char** argv) {
 
 
 namespace {
-const bool registered = register_command({"triangulate", command_triangulate,
+// The region sizes come from options.hpp (region_points_for), so that the help
+// cannot drift from the code.
+std::string count(std::size_t n) { return std::to_string(n); }
+const std::string usage =
     "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N]\n"
     "              [--stream] [--region-points N]\n"
     "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]\n"
@@ -97,29 +102,29 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"
     "      legacy VTK for ParaView when it ends in .vtk (2D and 3D).\n"
     "      --engine: the construction; the simplices are the same with each.\n"
-    "      hybrid builds DeWall's walls down to regions of n/4 points (16384 to\n"
-    "      262144) and triangulates each region with an incremental construction\n"
+    "      hybrid builds DeWall's walls down to regions of n/4 points (" + count(smallest_default_region) + " to\n"
+    "      " + count(largest_default_region) + ") and triangulates each region with an incremental construction\n"
     "      (no merge step; the regions run in parallel). auto (default) is\n"
     "      hybrid, handing over to the incremental construction alone when the\n"
     "      walls' searches prove too costly (points on or near one sphere, thin\n"
-    "      surfaces); it also builds inputs of one region's size (16384 points)\n"
+    "      surfaces); it also builds inputs of one region's size (" + count(smallest_default_region) + " points)\n"
     "      and all 4D+ inputs. The regions are built by dewall's own incremental\n"
-    "      construction; what auto hands over by CGAL's in 2D and 3D (mostly\n"
-    "      near-cospherical input, where CGAL's exact arithmetic is faster) and\n"
-    "      by dewall's own in 4D and up. dewall (walls all the way down, the\n"
-    "      paper's algorithm), incremental (dewall's own Bowyer-Watson) and\n"
-    "      cgal force one.\n"
+    "      construction; what auto hands over by CGAL's in 2D (mostly cocircular\n"
+    "      input, where CGAL's is faster) and by dewall's own in 3D and up.\n"
+    "      dewall (walls all the way down, the paper's algorithm), incremental\n"
+    "      (dewall's own Bowyer-Watson) and cgal force one.\n"
     "      --threads N: at most N threads (default: all cores); the output is the\n"
     "      same, byte for byte, for every N.\n"
     "      --stream writes each simplex as soon as it is built and keeps none\n"
-    "      in memory, and takes regions of at most 32768 points (plain list or\n"
+    "      in memory, and takes regions of at most " + count(largest_default_streaming_region) + " points (plain list or\n"
     "      .dwsx only): the same simplices; with --threads 1 in the order\n"
     "      collecting gives with the same regions (--region-points; by default\n"
-    "      they differ above 131072 points), with more threads in an order that\n"
+    "      they differ above " + count(4 * largest_default_streaming_region) + " points), with more threads in an order that\n"
     "      varies.\n"
     "      auto then decides once, at the first region, whether to hand over to\n"
-    "      CGAL (whose triangulation is whole in memory). To a pipe, a .dwsx\n"
-    "      stream leaves its count 'unknown' (readers take what follows).\n"
+    "      the incremental construction (whose triangulation is whole in memory).\n"
+    "      To a pipe, a .dwsx stream leaves its count 'unknown' (readers take\n"
+    "      what follows).\n"
     "      --region-points N: regions of at most N points instead (hybrid and\n"
     "      auto; the same simplices; the order, speed and memory change with N).\n"
     "      --incremental-engine: the incremental construction of the regions and\n"
@@ -129,7 +134,8 @@ const bool registered = register_command({"triangulate", command_triangulate,
     "      --stats prints the paper's Table 1 counters, the engine that built the\n"
     "      output and build_s=SECONDS on stderr.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"
-    "      --quiet turns it off.\n"});
+    "      --quiet turns it off.\n";
+const bool registered = register_command({"triangulate", command_triangulate, usage.c_str()});
 }  // namespace
 
 }  // namespace dewall::cli

@@ -29,6 +29,7 @@
 #include <span>
 #include <vector>
 
+#include "dewall/kernel/dimension.hpp"
 #include "dewall/kernel/point.hpp"
 
 namespace dewall::fuzz {
@@ -139,14 +140,8 @@ kernel::Point_d<D> read_point(Byte_source& in, const Coordinate_decoder& decoder
 /// Calls f.template operator()<D>() for the runtime dimension d ∈ [2, 6].
 template <class F>
 void with_dimension(int d, F&& f) {
-  switch (d) {
-    case 2: f.template operator()<2>(); break;
-    case 3: f.template operator()<3>(); break;
-    case 4: f.template operator()<4>(); break;
-    case 5: f.template operator()<5>(); break;
-    case 6: f.template operator()<6>(); break;
-    default: break;
-  }
+  if (d >= kernel::min_dimension && d <= kernel::max_dimension)
+    kernel::with_dimension(d, [&](auto dimension) { f.template operator()<decltype(dimension)::value>(); });
 }
 
 /// Reports a property violation and aborts, which libFuzzer records as a crash

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "dewall/detail/input.hpp"
+#include "dewall/kernel/point.hpp"
 #include "incremental_support.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 
@@ -145,7 +146,7 @@ bool with_cgal_triangulation(std::span<const Index> ids, Point_of&& point, Use&&
 /// Whether CGAL's cells are negatively oriented: in 2D and 3D never (its
 /// validity invariant); its dD cells share one orientation, tested on the
 /// first finite cell with our exact orientation_d_object. The engine tests
-/// check every simplex. (Testing each cell cost 3 % of the run at 10^6 points.)
+/// check every simplex. (Testing each cell showed in the run: docs/engines.md.)
 template <int D, class Graph, class Point_of>
 bool cells_negative(const Graph& graph, Point_of&& point) {
   if constexpr (D <= 3) {
@@ -205,10 +206,6 @@ bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D
   template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,         \
                                                const std::vector<std::size_t>*);                                \
   template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&, Region_filter<D>&);
-DEWALL_INSTANTIATE_CGAL_ENGINE(2)
-DEWALL_INSTANTIATE_CGAL_ENGINE(3)
-DEWALL_INSTANTIATE_CGAL_ENGINE(4)
-DEWALL_INSTANTIATE_CGAL_ENGINE(5)
-DEWALL_INSTANTIATE_CGAL_ENGINE(6)
+DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_CGAL_ENGINE)
 
 }  // namespace dewall::detail

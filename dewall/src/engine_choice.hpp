@@ -40,3 +40,9 @@ Statistics run_chosen_engine(std::span<const kernel::Point_d<D>> points, const O
 }
 
 }  // namespace dewall::detail
+
+/// The explicit instantiation for dimension D, one per engine_choice_<D>.cpp
+/// (one file per D so that the dimensions compile in parallel).
+#define DEWALL_INSTANTIATE_ENGINE_CHOICE(D)                                                             \
+  template dewall::Statistics dewall::detail::run_chosen_engine<D>(std::span<const kernel::Point_d<D>>, \
+                                                                   const Options&, Simplex_output<D>&);

@@ -1,5 +1,4 @@
 // detail::run_chosen_engine<3>, compiled with the project's flags.
 #include "engine_choice.hpp"
 
-template dewall::Statistics dewall::detail::run_chosen_engine<3>(std::span<const kernel::Point_d<3>>, const Options&,
-                                                                   Simplex_output<3>&);
+DEWALL_INSTANTIATE_ENGINE_CHOICE(3)

@@ -1,5 +1,4 @@
 // detail::run_chosen_engine<4>, compiled with the project's flags.
 #include "engine_choice.hpp"
 
-template dewall::Statistics dewall::detail::run_chosen_engine<4>(std::span<const kernel::Point_d<4>>, const Options&,
-                                                                   Simplex_output<4>&);
+DEWALL_INSTANTIATE_ENGINE_CHOICE(4)

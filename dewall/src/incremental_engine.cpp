@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/kernel/point.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "incremental_support.hpp"
 
@@ -77,10 +78,6 @@ bool incremental_region_cells(std::span<const Index> region, const std::vector<C
                                                  const std::vector<std::size_t>*);                           \
   template bool incremental_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,           \
                                             Region_filter<D>&);
-DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(2)
-DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(3)
-DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(4)
-DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(5)
-DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(6)
+DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_INCREMENTAL_ENGINE)
 
 }  // namespace dewall::detail

@@ -93,6 +93,7 @@
 
 #include "dewall/detail/incremental_delaunay.hpp"
 #include "dewall/detail/input.hpp"
+#include "dewall/kernel/point.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "dewall/kernel/first_occurrence.hpp"
@@ -1064,10 +1065,6 @@ Statistics triangulate_into(MPI_Comm comm, std::vector<kernel::Point_d<D>>&& loc
                                           const Simplex_sink<D>&, const Options&);                 \
   template Statistics triangulate_into<D>(MPI_Comm, std::vector<kernel::Point_d<D>>&&, std::uint64_t,  \
                                           const Simplex_sink<D>&, const Options&);
-DEWALL_INSTANTIATE_MPI(2)
-DEWALL_INSTANTIATE_MPI(3)
-DEWALL_INSTANTIATE_MPI(4)
-DEWALL_INSTANTIATE_MPI(5)
-DEWALL_INSTANTIATE_MPI(6)
+DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_MPI)
 
 }  // namespace dewall::mpi

@@ -48,10 +48,12 @@
 
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
+#include "dewall/kernel/dimension.hpp"
 #include "dewall/mpi/triangulate.hpp"
 
 namespace {
@@ -255,8 +257,9 @@ Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
     const std::uint64_t count = load_le(h + 16, 8);
     if (version != dewall::io::binary_points_version)
       throw File_error(name + ": unsupported binary point format version " + std::to_string(version));
-    if (dimension < 2 || dimension > 6)
-      throw File_error(name + ": dimension " + std::to_string(dimension) + " is outside 2 … 6");
+    if (!dewall::io::is_supported_dimension(dimension))
+      throw File_error(name + ": dimension " + std::to_string(dimension) + " is outside " +
+                       dewall::io::dimension_range());
     if (flags != 0) throw File_error(name + ": unknown flags " + std::to_string(flags));
     if (count > (std::uint64_t{1} << 58) / dimension) throw File_error(name + ": impossible point count");
     const std::uint64_t expected = dewall::io::binary_points_file_size(count, static_cast<int>(dimension));
@@ -691,13 +694,9 @@ int run(int argc, char** argv, int rank, int size) {
     const double t = MPI_Wtime();
     share = read_share(MPI_COMM_WORLD, args.input, rank, size);
     share.seconds = MPI_Wtime() - t;
-    switch (share.dimension) {
-      case 2: return triangulate<2>(MPI_COMM_WORLD, args, std::move(share), rank, size);
-      case 3: return triangulate<3>(MPI_COMM_WORLD, args, std::move(share), rank, size);
-      case 4: return triangulate<4>(MPI_COMM_WORLD, args, std::move(share), rank, size);
-      case 5: return triangulate<5>(MPI_COMM_WORLD, args, std::move(share), rank, size);
-      default: return triangulate<6>(MPI_COMM_WORLD, args, std::move(share), rank, size);
-    }
+    return dewall::kernel::with_dimension(share.dimension, [&](auto d) {
+      return triangulate<decltype(d)::value>(MPI_COMM_WORLD, args, std::move(share), rank, size);
+    });
   } catch (const dewall::Invalid_input& e) {
     if (rank == 0) std::fprintf(stderr, "dewall-mpi: %s: %s\n", args.input.c_str(), e.what());
     return 1;

@@ -8,11 +8,15 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 
+#include "dewall/options.hpp"
 #include "support/cli_runner.hpp"
 
 namespace {
@@ -159,5 +163,32 @@ TEST_CASE("messages: header integers are integers, an option is given once, coun
     const auto bad = cli("demo --points 2.5");
     CHECK(bad.status == 2);
     CHECK(bad.err.find("invalid point count '2.5'") != std::string::npos);
+  }
+}
+
+TEST_CASE("the help and README state the region sizes of the code", "[cli][docs]") {
+  // The help prints them from options.hpp; README.md is written by hand, so
+  // it is checked here against the same constants.
+  auto n = [](std::size_t v) { return std::to_string(v); };
+  const std::vector<std::string> phrases{
+      "regions of n/4 points (" + n(dewall::smallest_default_region) + " to " + n(dewall::largest_default_region) + ")",
+      "regions of at most " + n(dewall::largest_default_streaming_region) + " points",
+      "differ above " + n(4 * dewall::largest_default_streaming_region) + " points",
+      "one region's size (" + n(dewall::smallest_default_region) + " points)"};
+  std::ifstream in(std::string(DEWALL_SOURCE_DIR) + "/README.md");
+  REQUIRE(in);
+  const std::string readme{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const auto cli = fresh("messages_test_help_regions");
+  const auto help = cli("triangulate --help");
+  for (const std::string& phrase : phrases) {
+    INFO(phrase);
+    CHECK(readme.find(phrase) != std::string::npos);
+    // The help wraps its lines: compare with single spaces.
+    std::string flat;
+    for (char c : help.out) {
+      if (c == '\n') c = ' ';
+      if (!(c == ' ' && !flat.empty() && flat.back() == ' ')) flat += c;
+    }
+    CHECK(flat.find(phrase) != std::string::npos);
   }
 }

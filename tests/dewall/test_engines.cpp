@@ -19,6 +19,7 @@
 #include "dewall/kernel/point_array.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/kernel_archetype.hpp"
+#include "support/rounded_kernel.hpp"
 
 namespace {
 
@@ -411,6 +412,32 @@ TEST_CASE("engines: DeWall over the kernel archetype (the concept and nothing el
   check(generated<2>(dewall::io::Point_kind::uniform, 300, 4));
   check(generated<3>(dewall::io::Point_kind::grid, 125, 4));  // cospherical: the perturbation, through the functors
   check(generated<3>(dewall::io::Point_kind::bubbles, 400, 4));
+}
+
+/// DeWall over a Rounded_kernel<D, …> against CGAL on the exact points.
+template <class Rounded, int D = Rounded::dimension>
+bool rounded_gives_cgal(const std::vector<dewall::kernel::Point_d<D>>& points) {
+  const auto wrapped = Rounded::points(points);
+  // The rounding must matter: most approximations differ from the points.
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    moved += Rounded().approximate_coordinates_object()(wrapped[i]) != points[i].x;
+  REQUIRE(moved > points.size() / 2);
+  const auto t = dewall::triangulate<Rounded>(std::span<const typename Rounded::Point_d>(wrapped));
+  return dewall::test::as_set<D>(t.simplices) == dewall::test::cgal_delaunay<D>(points);
+}
+
+TEST_CASE("engines: a kernel whose approximate coordinates are rounded gives CGAL's simplices",
+          "[engine][archetype]") {
+  // The search prunes with the approximations; with a declared error bound it
+  // widens every box by it, without one it does not prune (concepts.hpp).
+  using dewall::io::Point_kind;
+  using dewall::test::Rounded_kernel;
+  CHECK(rounded_gives_cgal<Rounded_kernel<2, 5, true>>(generated<2>(Point_kind::uniform, 600, 7)));
+  CHECK(rounded_gives_cgal<Rounded_kernel<3, 4, true>>(generated<3>(Point_kind::uniform, 600, 7)));
+  CHECK(rounded_gives_cgal<Rounded_kernel<3, 8, true>>(generated<3>(Point_kind::bubbles, 600, 8)));
+  CHECK(rounded_gives_cgal<Rounded_kernel<4, 4, true>>(generated<4>(Point_kind::uniform, 200, 9)));
+  CHECK(rounded_gives_cgal<Rounded_kernel<3, 4, false>>(generated<3>(Point_kind::uniform, 300, 10)));
 }
 
 TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {

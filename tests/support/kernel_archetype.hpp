@@ -2,9 +2,11 @@
 // concept (concepts.hpp). Its point type is opaque — no coordinates, no
 // comparison, no arithmetic — and its functors are exactly the five required
 // ones, so an algorithm that compiles against it uses the concept and nothing
-// else. It does not declare approximate_coordinates_are_exact, so every
-// decision goes to its functors. They answer with Filtered_kernel_d<D>'s
-// predicates, so results can be checked against CGAL too.
+// else. It states nothing about its approximate coordinates (neither
+// approximate_coordinates_are_exact nor an error bound), so every decision
+// goes to its functors and the searches do not prune (concepts.hpp). They
+// answer with Filtered_kernel_d<D>'s predicates, so results can be checked
+// against CGAL too.
 #pragma once
 
 #include <array>

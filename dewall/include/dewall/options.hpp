@@ -54,8 +54,8 @@ constexpr Engine default_incremental_engine(int dimension) {
 }
 
 /// The incremental construction of the hybrid's regions: the project's own in
-/// every dimension (what reaches the regions is volume-like: uniform, ball,
-/// bubbles and layers 10^5, one thread, 0.74–0.86× CGAL's time).
+/// every dimension, faster than CGAL's on what reaches the regions, which is
+/// volume-like (docs/engines.md).
 constexpr Engine default_region_engine(int /*dimension*/) { return Engine::incremental; }
 
 /// "automatic", "dewall", "cgal", "incremental" or "hybrid".
@@ -110,30 +110,24 @@ struct Options {
   /// filters leave to the exact stage costing 100 candidates (the interval
   /// stage 10), counted from the first search, with an allowance of 64
   /// searches' worth plus 4^(D−2)·n candidates (handover_rule.hpp). A search
-  /// must look at every point near the sphere it proves empty. With the
-  /// kd-tree search the running average never exceeds 16 on 10^6 uniform 3D
-  /// points, 30–55 on clusters and coplanar layers; it is 350–580 on noisy
-  /// sphere and torus shells (where DeWall is 8–9× slower than CGAL),
-  /// thousands on one sphere or a torus tube, and on lattices and cospherical
-  /// points the exact tests decide. Measured rule, not a guess about the
-  /// input's name: see docs/engines.md.
+  /// must look at every point near the sphere it proves empty: the average
+  /// stays small on volume data and clusters and grows by orders of magnitude
+  /// on points near one sphere or surface, where the incremental construction
+  /// is much faster (on lattices and cospherical points the exact tests
+  /// decide). A measured rule, not a guess about the input's name: the
+  /// figures are in docs/engines.md.
   double handover_candidates_per_search = 150;
   /// Engine::hybrid and automatic: the largest region left to the incremental
-  /// construction; 0 chooses n / 4 within [16384, 262144], and with
-  /// Options::stream at most 32768: two levels of walls on 10^5–10^6 points,
-  /// four regions to run in parallel. The walls cost about 4× the incremental
-  /// construction per simplex, so each level costs time on any number of
-  /// cores (one thread, uniform 10^6: regions of n/8 5.07 s, n/4 4.65 s, n/2
-  /// 4.55 s; two threads 2.90 / 2.62 / 2.51 s; 10^4–3·10^4 points gain as
-  /// much from one level of walls instead of two). But a region's
-  /// triangulation is in memory while it runs, about 600 bytes per point
-  /// (uniform 10^6, both cores, collecting, peak memory: regions of n/4 528
-  /// MB, 131072 points 450 MB, 32768 points 414 MB, against CGAL's 573 MB,
-  /// the time 1.01–1.09, 1.06–1.18, 1.25–1.33× CGAL parallel's; streaming
-  /// 32768 points 172 MB, 65536 210 MB): the upper bound keeps 10^7–10^8 points from holding
-  /// gigabytes per region, and streaming, which is for memory, takes smaller
-  /// ones. Fixed by n and Options::stream, never by the number of threads, so
-  /// the output does not depend on them.
+  /// construction; 0 chooses region_points_for(n): n / 4 within
+  /// [smallest_default_region, largest_default_region], and with
+  /// Options::stream at most largest_default_streaming_region: two levels of
+  /// walls, four regions to run in parallel. The walls cost more per simplex
+  /// than the incremental construction, so each level costs time on any
+  /// number of cores; but a region's triangulation is in memory while it
+  /// runs, so the upper bound keeps large inputs from holding gigabytes per
+  /// region, and streaming, which is for memory, takes smaller ones. Fixed
+  /// by n and Options::stream, never by the number of threads, so the output
+  /// does not depend on them. The measurements: docs/engines.md.
   std::size_t region_points = 0;
   /// triangulate_to hands the simplices to its sink as they are built, and
   /// does not keep them (dewall.hpp). The same simplices; with one thread in
@@ -150,11 +144,17 @@ struct Options {
   bool stream = false;
 };
 
+/// The bounds of the default region size (Options::region_points); the CLI's
+/// help prints them, and a test checks README.md against them.
+inline constexpr std::size_t smallest_default_region = 16384;
+inline constexpr std::size_t largest_default_region = 262144;
+inline constexpr std::size_t largest_default_streaming_region = 32768;
+
 /// The region size Options::region_points asks for, for n points.
 constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
   if (o.region_points) return o.region_points;
-  const std::size_t largest = o.stream ? 32768 : 262144;
-  return n / 4 < 16384 ? 16384 : n / 4 > largest ? largest : n / 4;
+  const std::size_t largest = o.stream ? largest_default_streaming_region : largest_default_region;
+  return n / 4 < smallest_default_region ? smallest_default_region : n / 4 > largest ? largest : n / 4;
 }
 
 /// Counters for the paper's Table 1, filled by triangulate.

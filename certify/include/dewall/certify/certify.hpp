@@ -261,8 +261,8 @@ class Certifier {
 
   /// Facet matching, opposite sides, and the local Delaunay tests. The facets
   /// are filed by smallest vertex, and ranges of those buckets are checked on
-  /// all cores (most of the certifier's time: 10^6 points, one thread, 6 s
-  /// against CGAL's 3.9 s build). The ranges are fixed by the number of points
+  /// all cores (most of the certifier's time; docs/engines.md). The ranges
+  /// are fixed by the number of points
   /// and merged in order, each as far as the serial walk would have gone (it
   /// stops at the first fatal violation, and tests no sphere after the first
   /// Delaunay one), so the report is the same for any number of threads.

@@ -29,34 +29,6 @@ namespace dewall::cgal {
 
 namespace detail {
 
-// TDS access for Triangulation_data_structure_2 (see assemble()).
-template <class DT, class Item, class Traits>
-struct Tds2_access {
-  using Tds = typename DT::Triangulation_data_structure;
-  using Vertex_handle = typename Tds::Vertex_handle;
-  using Cell_handle = typename Tds::Face_handle;
-
-  Tds& tds;
-  Vertex_handle infinite;
-  const std::vector<Item>& items;  // by input index
-  Vertex_handle infinite_vertex() const { return infinite; }
-  Vertex_handle create_vertex(std::size_t i) {
-    Vertex_handle v = tds.create_vertex();
-    v->set_point(Traits::point(items[i]));
-    if constexpr (Traits::has_info) v->info() = items[i].second;
-    return v;
-  }
-  Cell_handle create_cell(const std::array<Vertex_handle, 3>& w) {
-    Cell_handle c = tds.create_face(w[0], w[1], w[2]);
-    for (const Vertex_handle& v : w) v->set_face(c);
-    return c;
-  }
-  static void set_neighbors(Cell_handle a, int i, Cell_handle b, int j) {
-    a->set_neighbor(i, b);
-    b->set_neighbor(j, a);
-  }
-};
-
 // Triangulation_hierarchy_2<DT> (CGAL's fast-location variant) names its base level Tr_Base.
 template <class DT>
 inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
@@ -68,7 +40,7 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
   if constexpr (is_hierarchy_2<DT>) {
     return false;
   } else {
-    return build_with_dewall<2, Tds2_access>(dt, items, options);
+    return build_with_dewall<2>(dt, items, options);
   }
 }
 

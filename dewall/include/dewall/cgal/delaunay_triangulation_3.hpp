@@ -29,40 +29,6 @@ namespace dewall::cgal {
 
 namespace detail {
 
-// TDS access for Triangulation_data_structure_3 (see assemble()).
-template <class DT, class Item, class Traits>
-struct Tds3_access {
-  using Tds = typename DT::Triangulation_data_structure;
-  using Vertex_handle = typename Tds::Vertex_handle;
-  using Cell_handle = typename Tds::Cell_handle;
-
-  Tds& tds;
-  Vertex_handle infinite;
-  const std::vector<Item>& items;  // by input index
-  Vertex_handle infinite_vertex() const { return infinite; }
-  Vertex_handle create_vertex(std::size_t i) {
-    Vertex_handle v = tds.create_vertex();
-    v->set_point(Traits::point(items[i]));
-    if constexpr (Traits::has_info) v->info() = items[i].second;
-    return v;
-  }
-  Cell_handle create_cell(const std::array<Vertex_handle, 4>& w) {
-    Cell_handle c = tds.create_cell(w[0], w[1], w[2], w[3]);
-    for (const Vertex_handle& v : w) v->set_cell(c);
-    return c;
-  }
-  void reserve(std::size_t vertices, std::size_t cells) {
-    if constexpr (requires { tds.cells().reserve(cells); }) {  // not in the concurrent container
-      tds.vertices().reserve(vertices);
-      tds.cells().reserve(cells);
-    }
-  }
-  static void set_neighbors(Cell_handle a, int i, Cell_handle b, int j) {
-    a->set_neighbor(i, b);
-    b->set_neighbor(j, a);
-  }
-};
-
 template <class DT>
 inline constexpr bool is_fast_location_3 = std::is_same_v<typename DT::Location_policy, CGAL::Fast_location>;
 
@@ -73,7 +39,7 @@ bool build_with_dewall_3(DT& dt, const std::vector<Item>& items, const Options& 
   if constexpr (is_fast_location_3<DT>) {
     return false;
   } else {
-    return build_with_dewall<3, Tds3_access>(dt, items, options);
+    return build_with_dewall<3>(dt, items, options);
   }
 }
 

@@ -15,12 +15,10 @@ template <int D>
 class Active_face_list {
  public:
   bool empty() const { return live_ == 0; }
-  std::size_t size() const { return live_; }
 
   /// The paper's Update: a face seen for the second time is closed (it has a
   /// simplex on each side) and leaves the list; otherwise it joins it.
-  /// Returns true when the face was inserted.
-  bool update(const Face<D>& f) {
+  void update(const Face<D>& f) {
     const Face<D> key = face_key<D>(f);
     std::uint32_t order = 0;  // f[i] = key[(order >> (3i)) & 7]: the orientation, kept in 3 bits per vertex
     for (int i = 0; i < D; ++i)
@@ -37,7 +35,7 @@ class Active_face_list {
       } else if (same(s.key, key)) {
         s.state = TOMB;
         --live_;
-        return false;
+        return;
       }
     }
     if (tomb == npos) {
@@ -47,7 +45,6 @@ class Active_face_list {
     slots_[tomb] = Slot{key, order, FULL};
     ++live_;
     pending_.push_back(key);
-    return true;
   }
 
   /// Removes and returns some active face (oriented as inserted). \pre !empty().

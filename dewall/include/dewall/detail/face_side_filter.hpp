@@ -66,14 +66,54 @@ class Face_side_filter {
       cofactor_[j] = (D - 1 + j) % 2 == 0 ? value : -value;
       error_[j] = eb::orientation_epsilon(D - 1) * product;
     }
-    // The per-query bound below with |x_j| replaced by its largest value in the box.
-    double magnitude = 0, carried = 0;
+    region_bound_ = region_bound(lo, hi);
+  }
+
+  /// For approximations within `coordinate_error` (δ) of the points (kernel/
+  /// concepts.hpp), for pruning only (box_may_hold_outer, clip_to_outer_side,
+  /// given boxes widened by 2δ; not operator()). With d = x − f_0 for the exact
+  /// x and f_0, d = x' − f̂_0 for x' = x − (f_0 − f̂_0), within 2δ of x̂: the
+  /// proofs below hold for x' when the cofactors' errors e_j cover the exact
+  /// face's, here by interval arithmetic on the rows widened by 2δ, and the
+  /// constructor's box is widened by 2δ.
+  Face_side_filter(const std::array<const Coords<D>*, D>& f, const Coords<D>& lo, const Coords<D>& hi,
+                   double coordinate_error)
+      : Face_side_filter(f, lo, hi) {
+    using kernel::Interval;
+    const double w = 2 * coordinate_error;
+    valid_ = std::isfinite(w);
+    if (!valid_) return;
+    const Interval spread(-w, w);
     for (int j = 0; j < D; ++j) {
-      const double reach = std::max(std::fabs(lo[j] - origin_[j]), std::fabs(hi[j] - origin_[j]));
-      magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);
-      carried += reach * error_[j];
+      kernel::Matrix<Interval, D - 1> minor;
+      for (int i = 0; i + 1 < D; ++i)
+        for (int k = 0, c = 0; k < D; ++k)
+          if (k != j) minor[i][c++] = Interval((*f[i + 1])[k]) - Interval(origin_[k]) + spread;
+      const Interval value = kernel::determinant<Interval, D - 1>(minor);
+      const Interval exact = (D - 1 + j) % 2 == 0 ? value : -value;
+      error_[j] = error_from(exact, cofactor_[j]);
+      if (!std::isfinite(error_[j])) valid_ = false;
     }
-    region_bound_ = bound(magnitude, carried);
+    region_bound_ = region_bound(widened_lower(lo, w), widened_upper(hi, w));
+  }
+
+  /// The largest |v − c| for v in `exact`, rounded up; NaN (not finite) when
+  /// either is not finite.
+  static double error_from(const kernel::Interval& exact, double c) {
+    using kernel::Interval;
+    const double above = (Interval(exact.hi()) - Interval(c)).hi(), below = (Interval(c) - Interval(exact.lo())).hi();
+    return std::isfinite(above) && std::isfinite(below) ? std::max(above, below)
+                                                        : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  /// The box [lo − w, hi + w], rounded outwards.
+  static Coords<D> widened_lower(Coords<D> lo, double w) {
+    for (double& v : lo) v = (kernel::Interval(v) - kernel::Interval(w)).lo();
+    return lo;
+  }
+  static Coords<D> widened_upper(Coords<D> hi, double w) {
+    for (double& v : hi) v = (kernel::Interval(v) + kernel::Interval(w)).hi();
+    return hi;
   }
 
   /// The cofactors: orientation(f, q) ≈ Σ_j (q_j − f0_j)·C_j, so C is a normal
@@ -142,6 +182,18 @@ class Face_side_filter {
     double s = 0;
     for (int j = 0; j < D; ++j) s += ((cofactor_[j] > 0 ? hi[j] : lo[j]) - origin_[j]) * cofactor_[j];
     return s > -region_bound_;
+  }
+
+  /// The per-query bound of operator() with |x_j| replaced by its largest
+  /// value in the box [lo, hi].
+  double region_bound(const Coords<D>& lo, const Coords<D>& hi) const {
+    double magnitude = 0, carried = 0;
+    for (int j = 0; j < D; ++j) {
+      const double reach = std::max(std::fabs(lo[j] - origin_[j]), std::fabs(hi[j] - origin_[j]));
+      magnitude += reach * (std::fabs(cofactor_[j]) + error_[j]);
+      carried += reach * error_[j];
+    }
+    return bound(magnitude, carried);
   }
 
   static double bound(double magnitude, double carried) {

@@ -40,7 +40,7 @@ Simplex<K::dimension> first_simplex(const Point_set<K>& ps, Simplex_search<K>& s
                                     std::span<const Index> points, const Split<K::dimension>& split) {
   constexpr int D = K::dimension;
   const auto& x = ps.coords;
-  auto side1 = [&](Index p) { return split.on_side1(x[p]); };
+  auto side1 = [&](Index p) { return split.on_side1(x[p], p); };
   auto gap = [&](Index p) { return std::abs(x[p][split.axis] - split.value); };
   Index a = points.front(), t = points.back();
   for (Index p : points) {

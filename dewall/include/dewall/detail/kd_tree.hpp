@@ -52,8 +52,9 @@ class Kd_tree {
   Kd_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) : leaf_size_(std::max<std::size_t>(1, leaf_size)) {
     // The build permutes (coordinates, index) pairs rather than indices into
     // `coords`: each comparison of the median selections then reads memory in
-    // order instead of two random points. (The selections still take 17 % of
-    // the 2D hybrid on one thread: O(n log n) work where CGAL's 2D is cheap.)
+    // order instead of two random points. (The selections remain a visible
+    // share of the 2D hybrid: O(n log n) work where CGAL's 2D is cheap;
+    // docs/engines.md.)
     std::vector<Item> items(coords.size());
     for (std::size_t i = 0; i < coords.size(); ++i) items[i] = {coords[i], static_cast<Index>(i)};
     leaf_of_.resize(coords.size());

@@ -19,6 +19,9 @@
 // closed ball of the current best's sphere (simplex_sphere.hpp): a better point
 // lies inside that ball, whose outer part only shrinks as the best improves.
 // Floating point thus only orders the visit and prunes; every choice is exact.
+// The pruning tests run on the kernel's approximate coordinates: taken as
+// exact when the kernel says they are, widened by the error it states
+// otherwise, and off when it states none (kernel/concepts.hpp).
 #pragma once
 
 #include <algorithm>
@@ -49,6 +52,9 @@ template <class K>
 class Simplex_search {
   static constexpr int D = K::dimension;
   using Node = typename Kd_tree<D>::Node;
+  // The kernel's approximations are not exact: every pruning test allows for
+  // Point_set::coordinate_error (kernel/concepts.hpp).
+  static constexpr bool widened = kernel::approximate_coordinates_error<K> != 0;
 
  public:
   /// budget: when given, every search and emptiness test is charged to (a
@@ -83,7 +89,7 @@ class Simplex_search {
 
   /// True when no point is inside the (perturbed) circumsphere of the
   /// positively oriented simplex s: s is a Delaunay simplex. Exact.
-  bool is_empty_sphere(const Simplex<D>& s) { return is_empty_sphere(s, Simplex_sphere<D>(coords_of(s))); }
+  bool is_empty_sphere(const Simplex<D>& s) { return is_empty_sphere(s, sphere_of(s)); }
   /// As above, with the sphere of s already built.
   bool is_empty_sphere(const Simplex<D>& s, const Simplex_sphere<D>& sphere) {
     if (budget_) budget_->begin_search();
@@ -113,7 +119,10 @@ class Simplex_search {
   }
 
   /// The sphere of a positively oriented simplex, for is_empty_sphere.
-  Simplex_sphere<D> sphere_of(const Simplex<D>& s) const { return Simplex_sphere<D>(coords_of(s)); }
+  Simplex_sphere<D> sphere_of(const Simplex<D>& s) const {
+    if constexpr (widened) return Simplex_sphere<D>(coords_of(s), ps_.coordinate_error);
+    else return Simplex_sphere<D>(coords_of(s));
+  }
 
   const Search_stats& stats() const { return stats_; }
   /// Whether the searches are charged to a budget (Engine::automatic).
@@ -145,8 +154,8 @@ class Simplex_search {
   class Apex_search {
    public:
     Apex_search(Simplex_search& owner, const Face<D>& f)
-        : owner_(owner), ps_(owner.ps_), f_(f), fc_(face_coords(owner.ps_, f)),
-          side_filter_(fc_, ps_.tree.lower(), ps_.tree.upper()), rank_(fc_, side_filter_.normal()),
+        : owner_(owner), ps_(owner.ps_), f_(f), fc_(face_coords(owner.ps_, f)), side_filter_(side_filter(ps_, fc_)),
+          rank_(fc_, side_filter_.normal()),
           outer_lo_(ps_.tree.lower()), outer_hi_(ps_.tree.upper()) {}
 
     const std::optional<Index>& best() const { return best_; }
@@ -242,7 +251,8 @@ class Simplex_search {
     // being nested on the outer side).
     void refresh_sphere() {
       if (sphere_is_current_ || !best_) return;
-      sphere_.emplace(owner_.coords_of(simplex_));
+      if constexpr (widened) sphere_.emplace(owner_.coords_of(simplex_), ps_.coordinate_error);
+      else sphere_.emplace(owner_.coords_of(simplex_));
       ball_ = sphere_->enclosing_box();
       sphere_is_current_ = true;
     }
@@ -255,14 +265,37 @@ class Simplex_search {
     bool clip() {
       if (clipped_) return true;
       clipped_ = true;
-      return side_filter_.clip_to_outer_side(outer_lo_, outer_hi_);
+      if constexpr (widened) {
+        // The filter clips the box of x' (within 2w of the approximations, its
+        // constructor says); the approximations lie within 2w of that.
+        const double w = 2 * ps_.coordinate_error;
+        outer_lo_ = Side_filter::widened_lower(outer_lo_, w);
+        outer_hi_ = Side_filter::widened_upper(outer_hi_, w);
+        if (!side_filter_.clip_to_outer_side(outer_lo_, outer_hi_)) return false;
+        outer_lo_ = Side_filter::widened_lower(outer_lo_, w);
+        outer_hi_ = Side_filter::widened_upper(outer_hi_, w);
+        return true;
+      } else {
+        return side_filter_.clip_to_outer_side(outer_lo_, outer_hi_);
+      }
     }
 
     bool may_hold_better(const Node& n) {
       refresh_sphere();
       if (best_ && !ball_.may_meet(n.lo, n.hi)) return false;  // the test that prunes most, first
       if (clipped_ && !boxes_meet(n.lo, n.hi, outer_lo_, outer_hi_)) return false;
-      return side_filter_.box_may_hold_outer(n.lo, n.hi);
+      if constexpr (widened) {
+        const double w = 2 * ps_.coordinate_error;
+        return side_filter_.box_may_hold_outer(Side_filter::widened_lower(n.lo, w), Side_filter::widened_upper(n.hi, w));
+      } else {
+        return side_filter_.box_may_hold_outer(n.lo, n.hi);
+      }
+    }
+
+    using Side_filter = Face_side_filter<D>;
+    static Side_filter side_filter(const Point_set<K>& ps, const std::array<const Coords<D>*, D>& fc) {
+      if constexpr (widened) return Side_filter(fc, ps.tree.lower(), ps.tree.upper(), ps.coordinate_error);
+      else return Side_filter(fc, ps.tree.lower(), ps.tree.upper());
     }
 
     static std::array<const Coords<D>*, D> face_coords(const Point_set<K>& ps, const Face<D>& f) {

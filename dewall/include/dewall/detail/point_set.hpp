@@ -11,6 +11,7 @@
 
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/kd_tree.hpp"
+#include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/sign.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
@@ -24,17 +25,21 @@ struct Point_set {
 
   K kernel;
   std::vector<const Point*> points;     // by local index
+  /// A bound on |x − x̂| for every coordinate x of every point and its value x̂
+  /// in `coords` (scaled alike): 0 when the approximations are exact, +∞ when
+  /// the kernel states no bound (kernel/concepts.hpp).
+  double coordinate_error = 0;
   std::vector<Coords<D>> coords;        // approximate coordinates, by local index
   std::vector<std::size_t> input_index; // local index -> index in the caller's input
   Kd_tree<D> tree;                      // over positions = local indices
 
   Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, std::size_t leaf_size)
-      : kernel(k), points(std::move(pts)), coords(approximate(k, points)), input_index(std::move(input)),
+      : kernel(k), points(std::move(pts)), coords(approximate(k, points, coordinate_error)), input_index(std::move(input)),
         tree(coords, leaf_size) {
     // Renumber the points in tree order: local index i is the tree's position
     // i, so a node's points and their coordinates are contiguous in memory.
     // One array at a time: a second copy of one, not of all three, at any
-    // moment (10^8 points: 2.4 GB less at the peak).
+    // moment (the saving at the peak: docs/engines.md).
     const std::vector<Index>& order = tree.order();
     permute(points, order);
     permute(coords, order);
@@ -66,11 +71,22 @@ struct Point_set {
     v.swap(permuted);
   }
 
-  static std::vector<Coords<D>> approximate(const K& k, const std::vector<const Point*>& pts) {
+  static std::vector<Coords<D>> approximate(const K& k, const std::vector<const Point*>& pts, double& error) {
     std::vector<Coords<D>> c(pts.size());
     const auto to_double = k.approximate_coordinates_object();
     for (std::size_t i = 0; i < pts.size(); ++i) c[i] = to_double(*pts[i]);
-    scale_to_unit(c);
+    constexpr double relative = kernel::approximate_coordinates_error<K>;
+    if constexpr (relative == 0) {
+      scale_to_unit(c);
+    } else {
+      // |x − x̂| ≤ ε·max(|x̂|, 2^-1022) ≤ ε·max(largest |x̂|, 2^-1022), rounded up;
+      // the scaling multiplies it by 2^s like the coordinates.
+      double largest = 0x1p-1022;
+      for (const auto& x : c)
+        for (double v : x) largest = std::max(largest, std::fabs(v));
+      error = relative * largest * (1 + 0x1p-50) + 0x1p-1074;
+      error = std::ldexp(error, scale_to_unit(c)) * (1 + 0x1p-50) + 0x1p-1074;
+    }
     return c;
   }
 
@@ -83,7 +99,8 @@ struct Point_set {
   /// every sign these computations prove (orientations, in-sphere tests) is
   /// invariant under an exact uniform scaling, splits compare coordinates in
   /// the same order, and the kernel's predicates still see the input points.
-  static void scale_to_unit(std::vector<Coords<D>>& c) {
+  /// Returns s (0 when the coordinates are left as they are).
+  static int scale_to_unit(std::vector<Coords<D>>& c) {
     double largest = 0, smallest = std::numeric_limits<double>::infinity();
     for (const auto& x : c)
       for (double v : x)
@@ -91,11 +108,12 @@ struct Point_set {
           largest = std::max(largest, std::fabs(v));
           smallest = std::min(smallest, std::fabs(v));
         }
-    if (largest == 0 || !std::isfinite(largest)) return;
+    if (largest == 0 || !std::isfinite(largest)) return 0;
     const int s = -std::ilogb(largest);
-    if (s == 0 || std::ilogb(smallest) + s < std::numeric_limits<double>::min_exponent - 1) return;
+    if (s == 0 || std::ilogb(smallest) + s < std::numeric_limits<double>::min_exponent - 1) return 0;
     for (auto& x : c)
       for (double& v : x) v = std::ldexp(v, s);
+    return s;
   }
 };
 

@@ -32,8 +32,8 @@ namespace dewall::detail {
 
 /// What a region's triangulator asks of the recursion (wall.hpp) while it
 /// walks DT(R), which it builds and keeps itself: copying DT(R) out as a
-/// list of cells with their neighbours cost a tenth of the run and a third of
-/// a region's memory (uniform 10^6 points: 36 of about 900 bytes per point).
+/// list of cells with their neighbours cost a visible share of the run and of
+/// a region's memory (docs/engines.md).
 template <int D>
 class Region_filter {
  public:
@@ -45,8 +45,8 @@ class Region_filter {
   /// untested. The cells holding one outside point q form a connected set
   /// that reaches the hull (Bowyer–Watson: the cavity q would open in DT(R)
   /// is connected, and q lies outside the convex hull of R, so the cavity
-  /// includes hull facets), so that walk meets all of them. On 10^5 uniform
-  /// points it asks 1 cell in ~N instead of all.
+  /// includes hull facets), so that walk meets all of them, asking few cells
+  /// on volume data (docs/engines.md).
   virtual bool empty_of_others(const Simplex<D>& cell) = 0;
   /// When true, every finite cell is asked instead (in DT(R)'s order), and a
   /// cell answered false is simply not kept: a wall's slab (wall.hpp) keeps

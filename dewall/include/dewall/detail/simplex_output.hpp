@@ -98,8 +98,8 @@ class Simplex_stream {
 /// A task's built simplices. Collecting: in output order, in blocks of fixed
 /// capacity, so that a push never moves earlier simplices and the parallel
 /// recursion joins its subproblems' output by moving blocks, not simplices
-/// (profile of 10^5 uniform points: copying between growing buffers and the
-/// page faults of their new memory took 15 % of the run). Streaming: one
+/// (copying between growing buffers and the page faults of their new memory
+/// showed in profiles: docs/engines.md). Streaming: one
 /// block, passed to the stream whenever it is full and by flush().
 template <int D>
 class Built_simplices {

@@ -39,6 +39,7 @@
 #include <optional>
 
 #include "dewall/detail/coords.hpp"
+#include "dewall/detail/face_side_filter.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
@@ -139,6 +140,46 @@ class Simplex_sphere {
     }
   }
 
+  /// For approximations within `coordinate_error` (δ) of the points (kernel/
+  /// concepts.hpp): only the box, for pruning; no in-sphere filter (inside()
+  /// answers nothing). The cofactors' errors cover the exact simplex's by
+  /// interval arithmetic on its rows widened by 2δ (and the lifted column
+  /// computed from them); the centre interval is widened by δ for the exact
+  /// s_0 and by δ more, as is the box, so that the approximation of a point in
+  /// the closed ball lies in the box, and Ball_box::may_meet holds for boxes of
+  /// approximations (a gap to the centre interval widened by δ is at most the
+  /// exact point's gap to the exact centre).
+  Simplex_sphere(const std::array<const Coords<D>*, D + 1>& s, double coordinate_error) : Simplex_sphere(s) {
+    using kernel::Interval;
+    const bool had_filter = valid_;
+    valid_ = false;
+    box_ = Ball_box<D>();
+    box_bound_ = std::numeric_limits<double>::infinity();
+    if (!had_filter || !std::isfinite(coordinate_error)) return;
+    const Interval spread(-2 * coordinate_error, 2 * coordinate_error), scale(std::ldexp(1.0, -exponent_));
+    std::array<std::array<Interval, D + 1>, D> rows;  // [y | |y|²], scaled like the cofactors
+    for (int i = 0; i < D; ++i) {
+      rows[i][D] = Interval(0.0);
+      for (int j = 0; j < D; ++j) {
+        rows[i][j] = (Interval((*s[i + 1])[j]) - Interval(origin_[j]) + spread) * scale;
+        rows[i][D] += rows[i][j] * rows[i][j];
+      }
+    }
+    for (int c = 0; c <= D; ++c) {
+      kernel::Matrix<Interval, D> minor;
+      for (int i = 0; i < D; ++i)
+        for (int k = 0, m = 0; k <= D; ++k)
+          if (k != c) minor[i][m++] = rows[i][k];
+      const Interval value = kernel::determinant<Interval, D>(minor);
+      const Interval exact = (D + c) % 2 == 0 ? value : -value;
+      error_[c] = Face_side_filter<D>::error_from(exact, cofactor_[c]);
+      if (!std::isfinite(error_[c])) return;
+    }
+    valid_ = true;
+    box_ = compute_box(coordinate_error * 2);
+    valid_ = false;
+  }
+
   /// As `inside`, faster. \pre q lies in enclosing_box() (which is bounded).
   std::optional<bool> inside_box(const Coords<D>& q) const {
     double s = 0, lifted = 0;
@@ -186,7 +227,8 @@ class Simplex_sphere {
     return (gamma * magnitude + (1 + gamma) * carried) * (1 + 0x1p-30) + 0x1p-1000;
   }
 
-  Ball_box<D> compute_box() const {
+  /// widen: added on both sides of the centre interval (and so of the box).
+  Ball_box<D> compute_box(double widen = 0) const {
     using kernel::Interval;
     Ball_box<D> box;
     if (!valid_) return box;
@@ -198,6 +240,7 @@ class Simplex_sphere {
     for (int j = 0; j < D; ++j) {
       const Interval offset = -(Interval(cofactor_[j]) + Interval(-error_[j], error_[j])) / twice_al * scale;
       centre[j] = Interval(origin_[j]) + offset;
+      if (widen != 0) centre[j] += Interval(-widen, widen);
       const double m = offset.magnitude();
       radius2 += Interval(m) * Interval(m);
     }

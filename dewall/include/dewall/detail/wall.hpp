@@ -136,7 +136,7 @@ class Wall_builder {
     Active_face_list<D> wall, side1, side2;
     Active_face_list<D>& operator()(const Face<D>& f) {
       int n1 = 0;
-      for (Index v : f) n1 += split.on_side1(coords[v]);
+      for (Index v : f) n1 += split.on_side1(coords[v], v);
       return n1 == D ? side1 : n1 == 0 ? side2 : wall;
     }
   };

@@ -13,6 +13,9 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <array>
+#include <limits>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "dewall/kernel/concepts.hpp"
@@ -53,6 +56,13 @@ class Cgal_kernel_adapter {
   static constexpr int dimension = D;
   using Cgal_kernel = CK;
   using Point_d = typename detail::Cgal_point<CK, D, is_d_kernel>::type;
+  /// Coordinates held as doubles are their own approximations: the search
+  /// prunes with them as exact, and CGAL's predicates decide everything
+  /// (an independent check). Other number types state nothing (concepts.hpp).
+  static constexpr double approximate_coordinates_error =
+      std::is_same_v<std::remove_cvref_t<decltype(std::declval<const Point_d&>()[0])>, double>
+          ? 0.0
+          : std::numeric_limits<double>::infinity();
 
   struct Orientation_d {
     CK kernel;

@@ -24,17 +24,38 @@
 //  * `compare_lexicographically_d_object()(p, q)`: the exact lexicographic
 //      order of the coordinates (the order the perturbation is defined on).
 //  * `approximate_coordinates_object()(p)`: the coordinates as
-//      std::array<double, D>. Inexact in general; the algorithm uses them only to
-//      rank candidates and to prune a search, never to decide.
-//  * Optional: `static constexpr bool approximate_coordinates_are_exact = true`
-//      declares that the points *are* those doubles. The algorithm may then
-//      decide with its own proven double filters (e.g. a per-face orientation
-//      filter), falling back to the kernel's predicates when they cannot prove
-//      a sign. Without it, every decision goes to the kernel's functors.
+//      std::array<double, D>, finite, equal for equal points (duplicates are
+//      found by hashing them, then compared exactly). The algorithm orders
+//      its work by them (the splits, the kd-tree, the order of candidates;
+//      points with one approximation are split by index) and prunes its
+//      searches with them: a kd-tree node is skipped when a floating-point
+//      test proves that no point of it can be the apex. The predicates decide
+//      everything else. What the pruning may assume is the kernel's to state,
+//      through one of two optional members:
+//      - `static constexpr bool approximate_coordinates_are_exact = true`: the
+//        points *are* those doubles. The pruning takes them as exact, and the
+//        algorithm may also decide with its own proven double filters (e.g. a
+//        per-face orientation filter), falling back to the kernel's
+//        predicates when they cannot prove a sign. (Filtered_kernel_d.)
+//      - `static constexpr double approximate_coordinates_error = ε`: every
+//        approximation x̂ of a coordinate x has |x − x̂| ≤ ε·max(|x̂|, 2^-1022)
+//        (ε = 2^-52 covers a correctly rounded or truncated conversion of an
+//        exact number to double; 0 says they are exact but the algorithm
+//        shall not decide with them, as Cgal_kernel_adapter over double
+//        coordinates). Every box the pruning proves is widened by that error,
+//        so no point is skipped that the exact coordinates would keep.
+//      Without either, nothing bounds the approximations and the searches
+//      prune nothing: every search looks at every point (quadratic time;
+//      correct for any approximations).
+//      The check that the points span E^D (detail/input.hpp) is an exact rank
+//      of the approximations: with a non-exact kernel whose rounding flattens
+//      the points, or rounds a flat set into general position, that check is
+//      wrong.
 #pragma once
 
 #include <array>
 #include <concepts>
+#include <limits>
 
 #include "dewall/kernel/sign.hpp"
 
@@ -59,5 +80,16 @@ template <class K>
 inline constexpr bool approximate_coordinates_are_exact = requires {
   requires K::approximate_coordinates_are_exact;
 };
+
+/// The relative error ε of K's approximate coordinates that the pruning
+/// honours: 0 when they are exact, K::approximate_coordinates_error when K
+/// states one, +∞ (no pruning) otherwise.
+template <class K>
+inline constexpr double approximate_coordinates_error = [] {
+  if constexpr (approximate_coordinates_are_exact<K>) return 0.0;
+  else if constexpr (requires { requires K::approximate_coordinates_error >= 0; })
+    return static_cast<double>(K::approximate_coordinates_error);
+  else return std::numeric_limits<double>::infinity();
+}();
 
 }  // namespace dewall::kernel

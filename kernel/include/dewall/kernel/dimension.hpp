@@ -20,13 +20,12 @@ inline std::string unsupported_dimension_message(int dimension) {
 /// at run time. \throws std::invalid_argument for any other dimension.
 template <class F>
 decltype(auto) with_dimension(int dimension, F&& f) {
-  static_assert(min_dimension == 2 && max_dimension == 6, "one case per supported dimension");
   switch (dimension) {
-    case 2: return f(std::integral_constant<int, 2>{});
-    case 3: return f(std::integral_constant<int, 3>{});
-    case 4: return f(std::integral_constant<int, 4>{});
-    case 5: return f(std::integral_constant<int, 5>{});
-    case 6: return f(std::integral_constant<int, 6>{});
+#define DEWALL_DIMENSION_CASE(D) \
+  case D:                        \
+    return f(std::integral_constant<int, D>{});
+    DEWALL_FOR_EACH_DIMENSION(DEWALL_DIMENSION_CASE)
+#undef DEWALL_DIMENSION_CASE
   }
   throw std::invalid_argument(unsupported_dimension_message(dimension));
 }

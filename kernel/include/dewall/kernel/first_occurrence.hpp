@@ -23,8 +23,8 @@ namespace dewall::kernel {
 /// points in a hash table, `compare` decides. A point for which `excluded(i)` is true
 /// (a non-finite one, say) is compared with nothing and maps to itself.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
-/// Complexity: O(n) expected comparisons, one table of 2n–4n slots. (It was a
-/// stable sort of indices: a tenth of CGAL's whole 2D triangulation time.)
+/// Complexity: O(n) expected comparisons, one table of 2n–4n slots (a sort
+/// of indices cost far more: docs/engines.md).
 template <class Point, class Compare, class Coordinates, class Excluded>
 std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Coordinates coordinates,
                                              Excluded excluded) {

@@ -107,11 +107,9 @@ Sign orientation_d(const Orientation_points<D>& p) {
   PREFIX template Sign orientation_d_exact<D>(const Orientation_points<D>&);                   \
   PREFIX template Sign orientation_d<D>(const Orientation_points<D>&);                         \
   PREFIX template Sign stages::after_filter<Orientation_recipe<D>, D>(const Orientation_points<D>&, double);
-DEWALL_ORIENTATION_INSTANTIATION(extern, 2)
-DEWALL_ORIENTATION_INSTANTIATION(extern, 3)
-DEWALL_ORIENTATION_INSTANTIATION(extern, 4)
-DEWALL_ORIENTATION_INSTANTIATION(extern, 5)
-DEWALL_ORIENTATION_INSTANTIATION(extern, 6)
+#define DEWALL_EXTERN_ORIENTATION(D) DEWALL_ORIENTATION_INSTANTIATION(extern, D)
+DEWALL_FOR_EACH_DIMENSION(DEWALL_EXTERN_ORIENTATION)
+#undef DEWALL_EXTERN_ORIENTATION
 
 }  // namespace dewall::kernel
 DEWALL_FLOATING_POINT_CODE_END

@@ -14,6 +14,10 @@ namespace dewall::kernel {
 /// The smallest and largest dimensions the kernel is instantiated and tested for.
 inline constexpr int min_dimension = 2;
 inline constexpr int max_dimension = 6;
+/// X(2) X(3) X(4) X(5) X(6): the supported dimensions, the one list that the
+/// compiled libraries' explicit instantiations and with_dimension expand.
+#define DEWALL_FOR_EACH_DIMENSION(X) X(2) X(3) X(4) X(5) X(6)
+static_assert(min_dimension == 2 && max_dimension == 6, "DEWALL_FOR_EACH_DIMENSION lists min_dimension … max_dimension");
 
 /// A point of E^D over double. An aggregate (`Point_d<3>{{1, 2, 3}}`) so that
 /// arrays of points are contiguous and trivially copyable.

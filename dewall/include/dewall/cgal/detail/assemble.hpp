@@ -248,14 +248,67 @@ bool has_projected_twins(const std::vector<kernel::Point_d<D>>& coords, const It
   return false;
 }
 
+/// The handle of a cell of Triangulation_data_structure_2 (a face) or _3.
+template <int D, class Tds>
+struct Tds_cell;
+template <class Tds>
+struct Tds_cell<2, Tds> {
+  using type = typename Tds::Face_handle;
+};
+template <class Tds>
+struct Tds_cell<3, Tds> {
+  using type = typename Tds::Cell_handle;
+};
+
+/// Access (see assemble()) to the data structure of a CGAL::Delaunay_triangulation_2
+/// (its faces are the cells) or _3.
+template <int D, class DT, class Item, class Traits>
+struct Tds_access {
+  using Tds = typename DT::Triangulation_data_structure;
+  using Vertex_handle = typename Tds::Vertex_handle;
+  using Cell_handle = typename Tds_cell<D, Tds>::type;
+
+  Tds& tds;
+  Vertex_handle infinite;
+  const std::vector<Item>& items;  // by input index
+  Vertex_handle infinite_vertex() const { return infinite; }
+  Vertex_handle create_vertex(std::size_t i) {
+    Vertex_handle v = tds.create_vertex();
+    v->set_point(Traits::point(items[i]));
+    if constexpr (Traits::has_info) v->info() = items[i].second;
+    return v;
+  }
+  Cell_handle create_cell(const std::array<Vertex_handle, D + 1>& w) {
+    if constexpr (D == 2) {
+      Cell_handle c = tds.create_face(w[0], w[1], w[2]);
+      for (const Vertex_handle& v : w) v->set_face(c);
+      return c;
+    } else {
+      Cell_handle c = tds.create_cell(w[0], w[1], w[2], w[3]);
+      for (const Vertex_handle& v : w) v->set_cell(c);
+      return c;
+    }
+  }
+  void reserve(std::size_t vertices, std::size_t cells) {
+    // 3D only (where it was measured); not in the concurrent container.
+    if constexpr (D == 3 && requires { tds.cells().reserve(cells); }) {
+      tds.vertices().reserve(vertices);
+      tds.cells().reserve(cells);
+    }
+  }
+  static void set_neighbors(Cell_handle a, int i, Cell_handle b, int j) {
+    a->set_neighbor(i, b);
+    b->set_neighbor(j, a);
+  }
+};
+
 /// Builds dt (freshly constructed) from items with DeWall, assembled in its
-/// data structure through Access<DT, Item, Traits> (Tds2_access, Tds3_access);
+/// data structure through Tds_access;
 /// false when DeWall does not apply and dt is untouched: DT's geometric traits
 /// are not known to decide as DeWall does (Dewall_axes), a coordinate is not
 /// exactly a double, points equal under the projection differ as points
-/// (has_projected_twins), or the points do not span E^D. The 2D and 3D
-/// builders differ only in Access.
-template <int D, template <class, class, class> class Access, class DT, class Item>
+/// (has_projected_twins), or the points do not span E^D.
+template <int D, class DT, class Item>
 bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options) {
   using Axes = Dewall_axes<typename DT::Geom_traits, D>;
   if constexpr (!Axes::known) {
@@ -272,7 +325,7 @@ bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& op
 
     auto& tds = dt.tds();
     tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
-    Access<DT, Item, Traits> access{tds, tds.create_vertex(), items};
+    Tds_access<D, DT, Item, Traits> access{tds, tds.create_vertex(), items};
     dt.set_infinite_vertex(access.infinite);
     tds.set_dimension(D);
     assemble<D>(*simplices, items.size(), access);
