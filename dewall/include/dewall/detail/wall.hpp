@@ -279,7 +279,7 @@ class Wall_builder {
       bool asks_every_cell() const override { return true; }
       bool empty_of_others(const Simplex<D>& s) override {
         int n1 = 0;
-        for (Index v : s) n1 += split.on_side1(builder.ps_.coords[v]);
+        for (Index v : s) n1 += split.on_side1(builder.ps_.coords[v], v);
         if (n1 == 0 || n1 == D + 1) return false;  // not a wall simplex: the halves' own
         bool searched = false;
         return builder.empty_of_outside(s, bounds, task.search, searched);
