@@ -130,6 +130,25 @@ def test_quickhull_filter_on_nearly_flat_facets(d, rng):
         assert simplex_set(compiled[0]) == simplex_set(reference)
 
 
+@pytest.mark.parametrize("d", [3, 4, 5, 6])
+def test_quickhull_filter_on_rounded_facet_points(d, rng):
+    """A random simplex and points on one of its facets, rounded off its hyperplane by a few ulps
+    to either side: the floating-point orientation gets many of them wrong (a filter with its
+    bound 10^6 times too small failed most trials). The facets are the exact Delaunay
+    triangulation's boundary facets, an independent construction."""
+    tried = 0
+    for _ in range(6):
+        simplex = rng.random((d + 1, d)) * 10 - 5
+        weights = rng.random((25, d))
+        points = np.vstack([simplex, (weights / weights.sum(axis=1)[:, None]) @ simplex[:d]])
+        compiled = dewall._dewall.convex_hull(points)
+        if compiled is None or compiled[3]:
+            continue  # some points exactly in one hyperplane: the Delaunay boundary triangulates that facet differently
+        tried += 1
+        assert simplex_set(compiled[0]) == simplex_set(dewall.Delaunay(points).convex_hull)
+    assert tried >= 3
+
+
 def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
     for cls in (dewall.ConvexHull, dewall.Voronoi):
         with pytest.raises(ValueError):
