@@ -108,7 +108,7 @@ def quickhull_facets(points):
     """The convex hull's facets on its extreme points by the compiled exact Quickhull (python/src/
     convex_hull.hpp): (facets, whether each is a whole face of the hull), as the furthest-site
     construction takes them; None when Quickhull declines (non-finite, too few or nearly flat
-    points) or finds flat facets in 4-D and up: the caller then takes the Delaunay route."""
+    points): the caller then takes the Delaunay route."""
     hull = _dewall.convex_hull(points)
     if hull is None:
         return None
@@ -120,9 +120,8 @@ def quickhull_facets(points):
     if d == 3 and flat:
         facets, _, whole = merge_flat_faces_3d(points, facets, below)
         return facets, whole
-    if flat:
-        return None
-    return facets, np.ones(len(facets), dtype=bool)
+    # 4-D and up with flat facets: a triangulation of the boundary, no facet known to be a whole face
+    return facets, np.full(len(facets), not flat)
 
 
 def ridge_pairs(facets):

@@ -115,9 +115,8 @@ class Delaunay:
         every point), exact, by gift wrapping over the hull vertices with the
         library's predicates (dewall/_furthest_site.py); cospherical hull
         vertices resolved by the library's symbolic perturbation. Points
-        inside hull edges and faces are set aside exactly in 2-D and 3-D
-        (a cube, a box-shaped grid work); 4-D+ hulls with flat facets raise
-        NotImplementedError: no start facet is known there yet.
+        inside hull edges and faces are never vertices; hulls with flat
+        facets (a cube, a tesseract, a grid in a box) in every dimension.
     incremental: allow add_points() until close(). Each add re-triangulates
         all the points (exact answer first; scipy's Qhull inserts instead), so
         the simplices are always those of Delaunay(all points).

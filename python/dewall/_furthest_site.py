@@ -7,8 +7,10 @@ works on those: gift wrapping (as for the Delaunay triangulation, with the
 sphere test reversed), every decision an exact predicate of the library
 (_dewall.predicate_signs: orientation, unperturbed in-sphere).
 
-1. Start from a hull facet (the Delaunay triangulation's): its neighbour inside
-   is the first simplex.
+1. Start from a hull facet that is a whole face of the hull on extreme points:
+   its neighbour inside is the first simplex. Without one (flat facets with 4 or
+   more corners: a cube, a tesseract, a grid), walk to the simplex above a fixed
+   interior point q (_walk_to_first_simplex).
 2. Pivot across a ridge R: among the hull vertices strictly beyond R (opposite
    the simplex's apex), the spheres through R form a pencil, nested on that
    side; take any candidate b, and while some candidate lies outside the sphere
@@ -29,14 +31,11 @@ test (CGAL's symbolic perturbation of the lifted points, the one the Delaunay
 triangulation uses), whose upper hull is unique, so the answer is one
 consistent triangulation, each circumsphere still containing every point (checked
 with the unperturbed test at the end, and the volumes against the hull's). Points
-inside hull edges and faces are never vertices; in 2-D and 3-D they are set aside
-first (_boundary), and the construction starts from a whole hull face (a triangle
-on extreme points: the triangulation must have it), or, in a 3-D hull without one
-(a cube, a box-shaped grid: all faces flat with 4 or more corners), from a hull
-edge (_start_on_flat_face). 4-D+ hulls with a hull vertex in a facet's hyperplane
-raise NotImplementedError rather than return a guess: their facets come from the
-Delaunay triangulation's boundary, points inside flat facets included, and no
-start is known there yet.
+inside hull edges and faces are never vertices (a point inside a face is a convex
+combination of its corners, so its lift lies strictly below theirs): in 2-D and
+3-D they are set aside first (_boundary); in 4-D and up they stay among the
+candidates, which is harmless (a sphere through such a point cannot contain the
+corners around it) and only costs tests.
 """
 
 from collections import deque
@@ -44,18 +43,15 @@ from collections import deque
 import numpy as np
 
 from . import _dewall
-from ._boundary import ridge_pairs
 
-_COPLANAR = ("furthest_site=True: the convex hull has flat facets (in 4-D and up: a hull vertex in a hull "
-             "facet's hyperplane); dewall does not construct that furthest-site triangulation yet")
+_FAILED = "dewall: the furthest-site construction failed its check (a bug: please report)"
 
 
 def furthest_site_simplices(points, hull_facets, whole=None):
     """The furthest-site Delaunay simplices (int32, each positively oriented) of `points`, whose
-    convex hull facets are `hull_facets` (rows of d point indices). `whole`, when given, marks the
-    facets that are whole faces of the hull on extreme points (_boundary): the construction then
-    starts from one of them and allows other hull points in facet hyperplanes (the corners of
-    flat faces); without it such points raise NotImplementedError."""
+    convex hull facets are `hull_facets` (rows of d point indices: a triangulation of the hull's
+    boundary). `whole`, when given, marks the facets that are whole faces of the hull on extreme
+    points (_boundary): the construction then starts from one of them; without one it walks."""
     d = points.shape[1]
     vertices = np.unique(hull_facets).astype(np.uint32)
 
@@ -70,13 +66,6 @@ def furthest_site_simplices(points, hull_facets, whole=None):
         if orientation([simplex])[0] < 0:
             simplex[0], simplex[1] = simplex[1], simplex[0]
         return simplex
-
-    if whole is None:  # refuse hull vertices in a hull facet's hyperplane (see above)
-        for facet in hull_facets:
-            others = vertices[~np.isin(vertices, facet)]
-            if (orientation(np.column_stack([np.tile(facet, (others.size, 1)), others])) == 0).any():
-                raise NotImplementedError(_COPLANAR)
-        whole = np.ones(len(hull_facets), dtype=bool)
 
     def pivot(ridge, apex_side):
         """The vertex completing `ridge` beyond it (the side of sign -apex_side), or None."""
@@ -102,15 +91,10 @@ def furthest_site_simplices(points, hull_facets, whole=None):
         inner = int(side[side != 0][0])  # every hull vertex is on one side of a hull facet
         return tuple(sorted(list(ridge) + [int(pivot(list(ridge), -inner))]))
 
-    def furthest_site(simplex):
-        """Whether the perturbed sphere of `simplex` contains every other hull vertex."""
-        others = vertices[~np.isin(vertices, simplex)]
-        return bool((signs(np.column_stack([np.tile(positive(simplex), (others.size, 1)), others]), 2) > 0).all())
-
-    if whole.any():  # a whole hull face is a face of every triangulation of the hull vertices
+    if whole is not None and whole.any():  # a whole hull face is a face of every triangulation of the hull vertices
         first = inward([int(v) for v in hull_facets[int(np.argmax(whole))]])
     else:
-        first = _start_on_flat_face(hull_facets, vertices, orientation, inward, furthest_site)
+        first = _walk_to_first_simplex(points, hull_facets, vertices, positive)
     simplices = {first}
     queue = deque(simplices)
     matched = set()
@@ -136,39 +120,57 @@ def furthest_site_simplices(points, hull_facets, whole=None):
     volume = np.abs(np.linalg.det(corners[:, 1:] - corners[:, :1])).sum()
     hull_volume = _hull_volume(points, hull_facets, vertices)
     if not abs(volume - hull_volume) <= 1e-9 * hull_volume:
-        raise NotImplementedError(_COPLANAR)
+        raise RuntimeError(_FAILED)
     # The defining property, unperturbed: every circumsphere contains every hull vertex (inside or on).
     for simplex in result:
         others = vertices[~np.isin(vertices, simplex)]
         if (signs(np.column_stack([np.tile(simplex, (others.size, 1)), others]), 1) < 0).any():
-            raise RuntimeError("dewall: the furthest-site construction failed its check (a bug: please report)")
+            raise RuntimeError(_FAILED)
     return result
 
 
-def _start_on_flat_face(hull_facets, vertices, orientation, inward, furthest_site):
-    """3-D, every hull face flat with 4 or more corners (a cube): a first simplex. An edge (a, b)
-    of the hull polytope is an edge of every triangulation of the hull vertices, so exactly one
-    triangle (a, b, c) of the furthest-site triangulation lies in a face F through it, c a corner
-    of F; pivoting inward from the right one gives a simplex whose perturbed sphere contains
-    every hull vertex, from any other one a simplex whose sphere does not (the perturbed
-    furthest-site triangulation is unique). So: try each corner c of F."""
-    facets = np.asarray(hull_facets, dtype=np.int64)
-    neighbors = ridge_pairs(facets)
-    for f, facet in enumerate(facets):
-        for j in range(3):
-            g = neighbors[f, j]
-            across = [v for v in facets[g] if v not in facet][0]
-            if orientation([list(facet) + [across]])[0] == 0:
-                continue  # inside a flat face: not an edge of the polytope
-            a, b = (int(v) for k, v in enumerate(facet) if k != j)
-            in_plane = orientation(np.column_stack([np.tile(facet, (vertices.size, 1)), vertices])) == 0
-            for c in vertices[in_plane]:
-                if c in (a, b):
-                    continue
-                simplex = inward([a, b, int(c)])
-                if furthest_site(simplex):
-                    return simplex
-    raise NotImplementedError(_COPLANAR)
+def _walk_to_first_simplex(points, hull_facets, vertices, positive):
+    """A first furthest-site simplex without a whole hull face to start from: the one above a
+    fixed point q inside the hull, found as the simplex method would. Lifted to the paraboloid,
+    a simplex S of hull vertices spans a hyperplane h_S; a vertex v outside S's (perturbed)
+    sphere lies above it. Replacing the vertex of S for which the new simplex S' still contains
+    q raises the height at q by λ'_v (|v|² − h_S(v)) > 0 (λ'_v: q's weight on v in S', positive
+    while q is in no hyperplane of d input points), so no simplex repeats, and the walk ends at
+    a simplex whose sphere contains every vertex: one of the triangulation (it is unique under
+    the perturbation). q: a weighted mean of a first simplex with unequal weights, appended to
+    a copy of the points so that the exact orientation can place it."""
+    d = points.shape[1]
+    facet = [int(v) for v in hull_facets[0]]  # hull facets from Quickhull or the Delaunay boundary: never flat
+    lifted = np.vstack([points, np.zeros((1, d))])
+    q = len(points)
+
+    def signs(rows, kind):
+        return _dewall.predicate_signs(lifted, np.ascontiguousarray(rows, dtype=np.uint32), kind)
+
+    others = vertices[~np.isin(vertices, facet)]
+    off = others[signs(np.column_stack([np.tile(facet, (others.size, 1)), others]), 0) != 0]
+    simplex = positive(facet + [int(off[0])])
+    weights = 1 + np.sqrt(np.arange(2, d + 3)) / 7  # unequal, so that q is unlikely on a hyperplane of d points
+    lifted[q] = weights @ points[simplex] / weights.sum()
+    for _ in range(100 * vertices.size + 1000):  # a cap, in case q lies in such a hyperplane after all
+        rest = vertices[~np.isin(vertices, simplex)]
+        outside = rest[signs(np.column_stack([np.tile(simplex, (rest.size, 1)), rest]), 2) < 0]
+        if outside.size == 0:
+            return tuple(sorted(simplex))
+        v = int(outside[0])
+        # the vertex to replace: q in the new simplex (closed), every sub-simplex with q non-negative
+        for i in range(d + 1):
+            new = positive(simplex[:i] + [v] + simplex[i + 1:])
+            if signs([new], 0)[0] == 0:
+                continue
+            inside = signs([new[:j] + [q] + new[j + 1:] for j in range(d + 1)], 0)
+            if (inside >= 0).all():
+                simplex = new
+                break
+        else:
+            break
+    raise NotImplementedError("furthest_site=True: no first simplex found for this input (the walk's "
+                              "interior point lies in a hyperplane of input points); please report it")
 
 
 def _hull_volume(points, hull_facets, vertices):

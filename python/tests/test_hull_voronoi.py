@@ -114,6 +114,41 @@ def test_quickhull_equals_the_delaunay_boundary_on_degenerate_input(d, rng):
         assert (ours.equations[:, :-1] @ points.T + ours.equations[:, -1:] <= 1e-12).all()
 
 
+@pytest.mark.parametrize("d", [3, 4, 5, 6])
+def test_quickhull_filter_on_nearly_flat_facets(d, rng):
+    """The corners of a cube moved by a few units in the last place (at the origin, and at 1000):
+    facets nearly in one hyperplane, where the static filter cannot decide and the exact test
+    must. The facets are the exact Delaunay triangulation's boundary facets, an independent
+    construction."""
+    for trial in [1] if d == 6 else range(4):  # 6-D at the origin: the reference's Delaunay takes 5 s
+        corners = np.array(np.meshgrid(*[range(2)] * d)).reshape(d, -1).T.astype(float)
+        offset = 1e3 if trial % 2 else 0.0
+        points = corners + offset + rng.uniform(-1, 1, corners.shape) * (2.0 ** -33 if offset else 2.0 ** -45)
+        compiled = dewall._dewall.convex_hull(points)
+        assert compiled is not None and not compiled[3]  # moved off the planes: no two facets in one
+        reference = dewall.Delaunay(points).convex_hull
+        assert simplex_set(compiled[0]) == simplex_set(reference)
+
+
+@pytest.mark.parametrize("d", [3, 4, 5, 6])
+def test_quickhull_filter_on_rounded_facet_points(d, rng):
+    """A random simplex and points on one of its facets, rounded off its hyperplane by a few ulps
+    to either side: the floating-point orientation gets many of them wrong (a filter with its
+    bound 10^6 times too small failed most trials). The facets are the exact Delaunay
+    triangulation's boundary facets, an independent construction."""
+    tried = 0
+    for _ in range(6):
+        simplex = rng.random((d + 1, d)) * 10 - 5
+        weights = rng.random((25, d))
+        points = np.vstack([simplex, (weights / weights.sum(axis=1)[:, None]) @ simplex[:d]])
+        compiled = dewall._dewall.convex_hull(points)
+        if compiled is None or compiled[3]:
+            continue  # some points exactly in one hyperplane: the Delaunay boundary triangulates that facet differently
+        tried += 1
+        assert simplex_set(compiled[0]) == simplex_set(dewall.Delaunay(points).convex_hull)
+    assert tried >= 3
+
+
 def test_masked_and_nan_fail():  # TestConvexHull/TestVoronoi.test_masked_array_fails, ..._with_nans_fails
     for cls in (dewall.ConvexHull, dewall.Voronoi):
         with pytest.raises(ValueError):

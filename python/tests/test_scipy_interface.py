@@ -411,9 +411,71 @@ def test_furthest_site_ties():
         volume = np.abs(np.linalg.det(cube[tri.simplices[:, 1:]] - cube[tri.simplices[:, :1]])).sum() / 6
         assert tri.nsimplex == 6 and volume == pytest.approx(side[-1] ** 3, rel=1e-12)
         assert np.unique(tri.simplices).size == 8 and (tri.plane_distance(cube) <= 1e-12).all()
-    # 4-D with a flat hull facet (a tesseract): refused, not guessed
-    with pytest.raises(NotImplementedError, match="4-D and up"):
-        dewall.Delaunay(np.array(list(itertools.product([0, 1], repeat=4)), dtype=float), furthest_site=True)
+
+
+def _furthest_site_by_definition(points, simplices):
+    """Brute force in exact rational arithmetic: each simplex is proper, its closed circumsphere
+    holds every point, and the simplices' volumes add up to the hull's (`hull_volume`, exact)."""
+    from fractions import Fraction
+
+    p = [[Fraction(float(x)) for x in row] for row in points]
+    d = len(p[0])
+    total = Fraction(0)
+    for simplex in simplices:
+        corners = [p[i] for i in simplex]
+        # the centre c: 2 (v_i - v_0) . c = |v_i|^2 - |v_0|^2, solved by exact Gaussian elimination
+        rows = [[2 * (v[k] - corners[0][k]) for k in range(d)] + [sum(x * x for x in v) - sum(x * x for x in corners[0])]
+                for v in corners[1:]]
+        det = Fraction(1)
+        for c in range(d):
+            pivot = next(r for r in range(c, d) if rows[r][c] != 0)  # StopIteration: a flat simplex
+            rows[c], rows[pivot] = rows[pivot], rows[c]
+            det *= rows[c][c] / 2
+            for r in range(d):
+                if r != c and rows[r][c] != 0:
+                    f = rows[r][c] / rows[c][c]
+                    rows[r] = [x - f * y for x, y in zip(rows[r], rows[c])]
+        centre = [rows[c][d] / rows[c][c] for c in range(d)]
+        radius = sum((x - y) ** 2 for x, y in zip(corners[0], centre))
+        assert all(sum((x - y) ** 2 for x, y in zip(q, centre)) <= radius for q in p)
+        total += abs(det)
+    return total  # d! times the volume covered
+
+
+@pytest.mark.parametrize("d, side", [(3, 2), (3, 3), (4, 2), (4, 3), (5, 2)])
+def test_furthest_site_flat_facets(d, side):
+    """Hulls whose every facet is flat with 2^(d-1) corners (a cube, a grid in a box): no facet to
+    start from; the walk finds the first simplex. Checked against the definition, exactly."""
+    import itertools
+    import math
+
+    grid = np.array(list(itertools.product(range(side), repeat=d)), dtype=float)
+    tri = dewall.Delaunay(grid, furthest_site=True)
+    assert tri.nsimplex == math.factorial(d) and np.unique(tri.simplices).size == 2 ** d  # only the corners
+    assert _furthest_site_by_definition(grid, tri.simplices) == math.factorial(d) * (side - 1) ** d
+    assert (tri.find_simplex(grid) >= 0).all()
+
+
+@pytest.mark.parametrize("d", [4, 5])
+def test_furthest_site_flat_facets_random_lattice(d, rng):
+    """Lattice points (flat facets, cospherical corners, points inside facets) in 4-D and 5-D:
+    the definition holds exactly, and the Quickhull and Delaunay-boundary routes agree (the
+    perturbed triangulation is unique)."""
+    import math
+
+    from dewall._delaunay import _hull_facets
+    from dewall._furthest_site import furthest_site_simplices
+
+    for _ in range(3):
+        points = rng.integers(0, 3, (int(rng.integers(20, 40)), d)).astype(float)
+        points = np.unique(points, axis=0)
+        ours = dewall.Delaunay(points, furthest_site=True)
+        hull = dewall.ConvexHull(points)
+        covered = _furthest_site_by_definition(points, ours.simplices)
+        assert float(covered) == pytest.approx(math.factorial(d) * hull.volume, rel=1e-12)
+        tri = dewall.Delaunay(points)
+        assert simplex_set(furthest_site_simplices(points, _hull_facets(tri.simplices, tri.neighbors))) == \
+            simplex_set(ours.simplices)
 
 
 @pytest.mark.parametrize("d", [2, 3])
