@@ -148,7 +148,7 @@ class Incremental_delaunay {
 
   /// Room for `cells` cell slots, so that the cell arrays grow without
   /// copying up to that many: a copy writes fresh pages the kernel must clear
-  /// first (a sixth of the time at 10^6 points here) and holds the old and
+  /// first (measured: docs/engines.md) and holds the old and
   /// the new array at once (dewall::mpi counts each rank's peak memory).
   /// Pages are touched only when cells use them: what is reserved and never
   /// used stays unbacked address space. build() reserves expected_cells.
