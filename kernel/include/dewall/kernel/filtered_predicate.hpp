@@ -239,9 +239,21 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 template <class Recipe, int D>
 std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   constexpr int K = Recipe::size;
+  // Integers already (a lattice as given): no scale to take out. This test
+  // first, because frexp and ldexp on every coordinate cost more than the
+  // rest of the stage (grid 10^5: a fifth of the run).
+  bool integers = true;
+  for (int i = 0; i < Recipe::arity && integers; ++i)
+    for (int j = 0; j < D; ++j) {
+      const double x = (*p[static_cast<std::size_t>(i)])[j];
+      if (!(std::fabs(x) <= 0x1p20) || x != std::nearbyint(x)) {
+        integers = false;
+        break;
+      }
+    }
   // q: the exponent of the lowest set bit over all coordinates (x = odd · 2^e).
-  int q = std::numeric_limits<int>::max();
-  for (int i = 0; i < Recipe::arity; ++i)
+  int q = integers ? 0 : std::numeric_limits<int>::max();
+  for (int i = 0; i < Recipe::arity && !integers; ++i)
     for (int j = 0; j < D; ++j) {
       const double x = (*p[static_cast<std::size_t>(i)])[j];
       if (!std::isfinite(x)) return std::nullopt;
@@ -259,7 +271,8 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   std::array<std::array<double, D>, Recipe::arity> scaled;
   for (int i = 0; i < Recipe::arity; ++i)
     for (int j = 0; j < D; ++j) {
-      const double x = std::ldexp((*p[static_cast<std::size_t>(i)])[j], -q);
+      const double given = (*p[static_cast<std::size_t>(i)])[j];
+      const double x = q == 0 ? given : std::ldexp(given, -q);
       if (!(std::fabs(x) <= 0x1p20)) return std::nullopt;
       scaled[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)] = x;
     }
