@@ -301,7 +301,9 @@ TEMPLATE_TEST_CASE_SIG("exact in double: lattices scaled by 2^s are decided, as 
   const auto seed = dewall::test::test_seed(0x1a771ce + D);
   INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
   Rng rng(seed);
-  for (const int s : {-1074 + 8, -1000, -30, -6, 0, 3, 400}) {
+  // (Not 2^1 … 2^20: integers, which the stage takes as they are, and whose 6D
+  // sphere entries can then exceed its bound; the stage may decline, never err.)
+  for (const int s : {-1074 + 8, -1000, -30, -6, 0, 400}) {
     INFO("scale 2^" << s);
     int orientation_zero = 0, sphere_zero = 0;
     for (int c = 0; c < 40; ++c) {
