@@ -13,13 +13,21 @@
 namespace dewall::detail {
 namespace {
 
+/// Cell c's vertices as the caller's ids.
+template <int D>
+Simplex<D> input_vertices(const Incremental_delaunay<D>& dt, std::size_t c) {
+  Simplex<D> s;
+  for (int i = 0; i <= D; ++i) s[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+  return s;
+}
+
 /// An Incremental_delaunay as the cell graph filter_region walks
-/// (incremental_support.hpp); the walk's states in an array of their own.
+/// (incremental_support.hpp); the walk's states in an array of the caller's.
 template <int D>
 struct Incremental_graph {
   using Cell = std::uint32_t;
   const Incremental_delaunay<D>& dt;
-  std::vector<std::int32_t> states = std::vector<std::int32_t>(dt.slots());
+  std::vector<std::int32_t>& states;
 
   template <class F>
   void for_each_cell(F&& f) const {
@@ -33,11 +41,7 @@ struct Incremental_graph {
     return dt.cell(c)[static_cast<std::size_t>(i)] == Incremental_delaunay<D>::infinite;
   }
   std::int32_t& state(Cell c) { return states[c]; }
-  Simplex<D> vertices(Cell c) const {
-    Simplex<D> s;
-    for (int i = 0; i <= D; ++i) s[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
-    return s;
-  }
+  Simplex<D> vertices(Cell c) const { return input_vertices(dt, c); }
 };
 
 }  // namespace
@@ -53,9 +57,8 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
       [&](std::size_t k) { return distinct[k]; });
   DEWALL_ASSERT(built);  // the points span E^D: checked above
   Block_writer<D> writer(output, dt.finite_cells());
-  const Incremental_graph<D> graph{dt};
   for (std::size_t c = 0; c < dt.slots(); ++c)
-    if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(graph.vertices(static_cast<std::uint32_t>(c)));
+    if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(input_vertices(dt, c));
   return incremental_statistics(Engine::incremental, points.size(), distinct.size(), writer.finish());
 }
 
@@ -68,7 +71,8 @@ bool incremental_region_cells(std::span<const Index> region, const std::vector<C
           region.size(), [&](std::size_t k) -> const Coords<D>& { return coords[region[k]]; },
           [&](std::size_t k) { return region[k]; }))
     return false;
-  Incremental_graph<D> graph{dt};
+  std::vector<std::int32_t> states(dt.slots());
+  Incremental_graph<D> graph{dt, states};
   filter_region<D>(graph, false, filter);  // its cells are positively oriented
   return true;
 }
