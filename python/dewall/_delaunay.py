@@ -251,8 +251,11 @@ class Delaunay:
     @property
     def simplices(self):
         """int32 array (nsimplex, ndim + 1): input indices, each simplex positively oriented
-        (det[p1 - p0, …, pd - p0] > 0). Read-only: find_simplex relies on it."""
-        return self._lazy("simplices", lambda: self._triangulation.simplices())
+        (det[p1 - p0, …, pd - p0] > 0). Writeable, as scipy's (`tri.simplices.sort()` is common,
+        scipy's own tests do it): a copy of the compiled triangulation's rows, which find_simplex
+        walks, so changing it cannot mislead point location; the attributes computed from it
+        afterwards (transform, convex_hull, …) follow the change, as in scipy."""
+        return self._lazy("simplices", lambda: np.array(self._triangulation.simplices()))
 
     @property
     def neighbors(self):
