@@ -7,7 +7,9 @@
 //    Delaunay_triangulation (it sorts them along a space-filling curve), then
 //    each finite full cell written out with its vertices' input indices (found
 //    by binary search in the sorted run heads: CGAL stores the doubles given),
-//    swapped to positive orientation where needed, and its neighbours.
+//    swapped to positive orientation where needed, and its neighbours. In 7
+//    and 8 dimensions over Epick_d of that static dimension (faster), else of
+//    the dynamic one.
 // 2. predicate_signs: CGAL's filtered exact Orientation_d and
 //    Side_of_oriented_sphere_d; the perturbed sphere test is written out here
 //    from its definition (below), so the tests can hold it against the
@@ -37,7 +39,6 @@ namespace {
 
 using K = CGAL::Epick_d<CGAL::Dynamic_dimension_tag>;
 using Point = K::Point_d;
-using Triangulation = CGAL::Delaunay_triangulation<K>;
 
 std::vector<Point> as_points(const double* x, std::size_t n, int d) {
   std::vector<Point> p;
@@ -91,9 +92,13 @@ std::int8_t perturbed_side(const K& k, const std::vector<const Point*>& s, const
   return -1;  // not reached: q is in `order`
 }
 
-}  // namespace
-
-Cells triangulate(const double* x, std::size_t n, int d) {
+/// triangulate() over the kernel Kd: Epick_d of a static dimension (7 and 8, scipy's
+/// tests reach 8: its points and predicates allocate nothing, 1.65× faster on 200 points in
+/// 7-D) or of the dynamic one (every other dimension).
+template <class Kd>
+Cells triangulate_with(const double* x, std::size_t n, int d) {
+  using Point = typename Kd::Point_d;
+  using Triangulation = CGAL::Delaunay_triangulation<Kd>;
   for (std::size_t i = 0; i < n; ++i)
     for (int j = 0; j < d; ++j)
       if (!std::isfinite(x[i * d + j])) throw dewall::Invalid_input(i, "has a non-finite coordinate (NaN or infinity)");
@@ -155,6 +160,14 @@ Cells triangulate(const double* x, std::size_t n, int d) {
     }
   }
   return cells;
+}
+
+}  // namespace
+
+Cells triangulate(const double* x, std::size_t n, int d) {
+  if (d == 7) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<7>>>(x, n, d);
+  if (d == 8) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<8>>>(x, n, d);
+  return triangulate_with<K>(x, n, d);
 }
 
 void predicate_signs(const double* x, std::size_t n, int d, const std::uint32_t* rows, std::size_t count, int kind,
