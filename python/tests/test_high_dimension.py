@@ -68,7 +68,7 @@ def test_perturbed_sign_equals_the_library_kernel(rng):
         assert (signs(grid, rows, 1) == 0).any()  # ties were tested
 
 
-@pytest.mark.parametrize("d, n", [(7, 30), (8, 20)])
+@pytest.mark.parametrize("d, n", [(7, 30), (8, 20), (9, 14)])  # 9: the dynamic-dimension kernel
 def test_random_points_equal_scipy(rng, d, n):
     points = rng.random((n, d))
     tri, theirs = dewall.Delaunay(points), scipy_spatial.Delaunay(points)
