@@ -1,10 +1,14 @@
 #!/usr/bin/python3
-"""dewall.ConvexHull and dewall.interpolate.LinearNDInterpolator against scipy's, for the README.
+"""dewall.Delaunay (with neighbors and transform), ConvexHull and interpolate.LinearNDInterpolator against scipy's,
+for the README.
 
+    PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py build --sizes 1e6
     PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py hull
     PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py \
         interpolate --dims 2 --sizes 1e6
 
+build: Delaunay of n uniform points in the unit square / cube (seed 1) with `neighbors` and
+`transform`, scipy's then dewall's (threads=1), each timed around all three.
 hull: ConvexHull of n uniform points in the unit square / cube (seed 1), scipy's then
 dewall's, each timed around the constructor; the facets compared as sets.
 interpolate: LinearNDInterpolator(points, values) built and then evaluated on a regular
@@ -50,6 +54,27 @@ def hull(dims, sizes, repeat):
                   f"ratio {ours_seconds / theirs_seconds:.2f}, same facets: {same}", flush=True)
 
 
+def build(dims, sizes, repeat):
+    """Delaunay construction, then `neighbors` and `transform` (what interpolation and barycentric
+    code read first): scipy's, then dewall's on the same points, one thread under taskset."""
+    for d in dims:
+        for n in sizes:
+            points = np.random.default_rng(1).random((n, d))
+            seconds = {}
+            for name, make in (("scipy", lambda: scipy.spatial.Delaunay(points)),
+                               ("dewall", lambda: dewall.Delaunay(points, threads=1))):
+                def run():
+                    tri = make()
+                    tri.neighbors, tri.transform
+                    return tri
+                seconds[name], tri = timed(run, repeat)
+                simplices = tri.nsimplex
+                del tri
+                print(f"Delaunay + neighbors + transform {d}-D n={n:.0e}, {name}: {seconds[name]:.2f} s "
+                      f"({simplices} simplices)", flush=True)
+            print(f"  ratio {seconds['dewall'] / seconds['scipy']:.2f}", flush=True)
+
+
 def interpolate(dims, sizes, random_queries=False):
     for d in dims:
         for n in sizes:
@@ -78,15 +103,17 @@ def interpolate(dims, sizes, random_queries=False):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=("hull", "interpolate"))
+    parser.add_argument("what", choices=("build", "hull", "interpolate"))
     parser.add_argument("--dims", type=int, nargs="+", default=[2, 3])
     parser.add_argument("--sizes", type=float, nargs="+", default=[1e5, 1e6])
-    parser.add_argument("--repeat", type=int, default=1, help="hull: the best of this many runs of each")
+    parser.add_argument("--repeat", type=int, default=1, help="build, hull: the best of this many runs of each")
     parser.add_argument("--random-queries", action="store_true",
                         help="interpolate: n uniform random queries instead of the grid (scipy's walk is slow on them)")
     args = parser.parse_args()
     sizes = [int(s) for s in args.sizes]
-    if args.what == "hull":
+    if args.what == "build":
+        build(args.dims, sizes, args.repeat)
+    elif args.what == "hull":
         hull(args.dims, sizes, args.repeat)
     else:
         interpolate(args.dims, sizes, args.random_queries)

@@ -17,6 +17,7 @@ from ._arrays import as_coordinates
 from ._errors import InvalidInput, InvalidOption, translated
 from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
 from ._furthest_site import furthest_site_simplices
+from ._high_dimension import DimensionFreeTriangulation
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
 # reciprocal condition number under which a barycentric transform is NaN.
@@ -94,15 +95,31 @@ def _refuse_masked(values, what):
         raise ValueError(f"{what} cannot be a masked array")
 
 
+# The library's kernel and engines cover 2 … 6 dimensions; above, CGAL's dD triangulation (_high_dimension.py).
+_MAX_LIBRARY_DIMENSION = 6
+
+
 def _triangulate(points, engine, threads):
+    if points.shape[1] > _MAX_LIBRARY_DIMENSION:
+        if str(engine) not in ("auto", "cgal"):
+            raise ValueError(f"engine {engine!r}: above {_MAX_LIBRARY_DIMENSION} dimensions the triangulation is "
+                             "CGAL's dD Delaunay_triangulation (engine 'auto' or 'cgal')")
+        return DimensionFreeTriangulation.triangulate(points)
     try:
         return _dewall.triangulate(points, str(engine), threads)
     except InvalidInput as error:
         raise translated(error) from None
 
 
+def _from_simplices(points, simplices):
+    """A triangulation object over given simplices (no triangulation run), in any dimension."""
+    if points.shape[1] > _MAX_LIBRARY_DIMENSION:
+        return DimensionFreeTriangulation(points, simplices)
+    return _dewall.from_simplices(points, np.ascontiguousarray(simplices, dtype=np.uint32))
+
+
 class Delaunay:
-    """The Delaunay triangulation of points in E^d (d = 2 … 6), exact, with scipy.spatial.Delaunay's interface.
+    """The Delaunay triangulation of points in E^d (d >= 2), exact, with scipy.spatial.Delaunay's interface.
 
     Delaunay(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
 
@@ -131,7 +148,12 @@ class Delaunay:
         CGAL's incremental construction when DeWall's searches prove too
         costly, e.g. points on one sphere; in 4D and up dewall's own
         incremental construction), "hybrid", "dewall", "incremental" or
-        "cgal". The simplices are the same with each.
+        "cgal". The simplices are the same with each. In 7 dimensions and up
+        the library's kernel and engines (compiled for 2 … 6) are not there:
+        CGAL's dD Delaunay_triangulation (Epick_d, its filtered exact
+        predicates and symbolic perturbation, one thread) builds the
+        triangulation, so "auto" and "cgal" are the choices; its simplices
+        are CGAL's, as the library's are below (dewall/_high_dimension.py).
     threads (keyword only): the most threads to use, an int >= 1 (None: all
         cores); capped silently at the CPUs the process may run on
         (os.sched_getaffinity). The result does not depend on it.
@@ -179,7 +201,7 @@ class Delaunay:
         hull = quickhull_facets(points) if self.furthest_site else None
         if hull is not None:  # the furthest-site triangulation needs only the hull (None: the Delaunay route)
             simplices = furthest_site_simplices(points, *hull)
-            self._triangulation = _dewall.from_simplices(points, simplices.astype(np.uint32))
+            self._triangulation = _from_simplices(points, simplices)
             self._statistics = dict(self._triangulation.statistics, engine="furthest-site (Quickhull, gift wrapping)",
                                     input_points=points.shape[0], simplices=len(simplices),
                                     build_seconds=time.perf_counter() - start)
@@ -195,8 +217,7 @@ class Delaunay:
                 whole = np.ones(len(hull), dtype=bool)
             elif points.shape[1] == 3:
                 hull, _, whole = extreme_facets_3d(points, simplices, neighbors, hull)
-            self._triangulation = _dewall.from_simplices(
-                points, furthest_site_simplices(points, hull, whole).astype(np.uint32))
+            self._triangulation = _from_simplices(points, furthest_site_simplices(points, hull, whole))
         self._set_bounds()
 
     def _set_bounds(self):
@@ -230,8 +251,11 @@ class Delaunay:
     @property
     def simplices(self):
         """int32 array (nsimplex, ndim + 1): input indices, each simplex positively oriented
-        (det[p1 - p0, …, pd - p0] > 0). Read-only: find_simplex relies on it."""
-        return self._lazy("simplices", lambda: self._triangulation.simplices())
+        (det[p1 - p0, …, pd - p0] > 0). Writeable, as scipy's (`tri.simplices.sort()` is common,
+        scipy's own tests do it): a copy of the compiled triangulation's rows, which find_simplex
+        walks, so changing it cannot mislead point location; the attributes computed from it
+        afterwards (transform, convex_hull, …) follow the change, as in scipy."""
+        return self._lazy("simplices", lambda: np.array(self._triangulation.simplices()))
 
     @property
     def neighbors(self):
@@ -513,7 +537,7 @@ class Delaunay:
         self._incremental, self._closed = state["incremental"], state["closed"]
         self._qhull_options, self._statistics = state["qhull_options"], state["statistics"]
         self.points = state["points"]
-        self._triangulation = _dewall.from_simplices(self.points, state["simplices"].astype(np.uint32))
+        self._triangulation = _from_simplices(self.points, state["simplices"])
         self._set_bounds()
 
     def __repr__(self):

@@ -64,7 +64,7 @@ def _good_option(options):
 
 
 class ConvexHull:
-    """The convex hull of points in E^d (d = 2 … 6), with scipy.spatial.ConvexHull's interface.
+    """The convex hull of points in E^d (d >= 2), with scipy.spatial.ConvexHull's interface.
 
     ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None)
 
@@ -78,7 +78,9 @@ class ConvexHull:
     aside exactly, and in 2-D and 3-D a flat face is a fan over its corners. In 4-D and up a
     hull with flat facets is the boundary of the exact Delaunay triangulation instead (points
     inside a flat facet are vertices there, the facet triangulated by CGAL's perturbation), as
-    are nearly flat inputs (the exact Delaunay code then raises DegenerateInput or copes).
+    are nearly flat inputs (the exact Delaunay code then raises DegenerateInput or copes) and
+    every hull in 7-D and up (Quickhull's exact filter is compiled for 2 … 6 dimensions; the
+    triangulation there is CGAL's dD one, see dewall.Delaunay).
     `engine` and `threads` steer only that Delaunay triangulation. `coplanar` is empty: Qhull
     (option Qc) lists points it could not place for rounding, and neither boundary points nor
     duplicates (checked with scipy 1.10). Incremental mode recomputes from all the points.
@@ -135,7 +137,7 @@ class ConvexHull:
     def _hull(self, points):
         self.points, self.ndim, self.npoints = points, points.shape[1], points.shape[0]
         d = self.ndim
-        if not 2 <= d <= 6:  # the Delaunay code's message
+        if d < 2:  # the Delaunay code's message
             Delaunay(points, engine=self._engine, threads=self._threads)
         hull = _dewall.convex_hull(points)
         if hull is None or (hull[3] and d > 3):
@@ -225,7 +227,7 @@ class ConvexHull:
 
 
 class Voronoi(_FromDelaunay):
-    """The Voronoi diagram of points in E^d (d = 2 … 6), with scipy.spatial.Voronoi's interface.
+    """The Voronoi diagram of points in E^d (d >= 2), with scipy.spatial.Voronoi's interface.
 
     Voronoi(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
 

@@ -38,6 +38,7 @@
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/locate.hpp"
 #include "convex_hull.hpp"
+#include "high_dimension.hpp"
 
 namespace py = pybind11;
 
@@ -422,7 +423,9 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
 /// the first D + 1 (+1 inside, 0 on, -1 outside; the simplex must be
 /// positively oriented), unperturbed; 2: the same with CGAL's symbolic
 /// perturbation (never 0; the query must not be a vertex of the simplex).
-py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
+/// Above 6 dimensions, or with `cgal_dd` (the tests compare the two), CGAL's dD
+/// predicates (high_dimension.hpp) with the same conventions.
+py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind, bool cgal_dd) {
   if (kind < 0 || kind > 2) throw py::value_error("kind must be 0, 1 or 2");
   const bool sphere = kind > 0;
   const py::array points = checked(points_in, float64, -1, "points");
@@ -436,6 +439,14 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
     if (index[i] >= n) throw py::value_error("rows: index " + std::to_string(index[i]) + " is not a point index");
   py::array_t<std::int8_t> out(static_cast<py::ssize_t>(count));
   std::int8_t* sign = out.mutable_data();
+  if (cgal_dd || d > dewall::kernel::max_dimension) {
+    if (d < 2) throw py::value_error("points of 2 dimensions or more");
+    py::gil_scoped_release release;
+    dewall_python::high_dimension::predicate_signs(static_cast<const double*>(points.data()),
+                                                   static_cast<std::size_t>(n), static_cast<int>(d), index, count,
+                                                   kind, sign);
+    return out;
+  }
   dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
     constexpr int D = dim();
     const auto p = as_points<D>(points);
@@ -462,6 +473,7 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind) {
 /// convex_hull.hpp declines (non-finite, too few or nearly flat points: the caller falls back).
 py::object convex_hull(py::handle points_in) {
   const py::array points = checked(points_in, float64, -1, "points");
+  if (points.shape(1) > dewall::kernel::max_dimension) return py::none();  // the Delaunay route (CGAL dD)
   return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto dim) -> py::object {
     constexpr int D = dim();
     if (points.shape(0) > static_cast<py::ssize_t>(max_index)) throw py::value_error("too many points");
@@ -476,6 +488,53 @@ py::object convex_hull(py::handle points_in) {
                           adopt<std::int32_t>(std::move(hull->neighbors), {m, D}),
                           adopt<std::int32_t>(std::move(hull->below), {m}), hull->flat);
   });
+}
+
+/// Above 6 dimensions: CGAL's dD Delaunay triangulation (high_dimension.hpp) as
+/// (simplices, neighbors), int32 arrays of shape (m, d + 1) in the conventions
+/// of Triangulation.simplices() and .neighbors().
+py::tuple triangulate_dd(py::handle points_in) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  if (static_cast<std::size_t>(points.shape(0)) > max_index)
+    throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
+  const int d = static_cast<int>(points.shape(1));
+  if (d < 2) throw py::value_error("points of 2 dimensions or more");
+  dewall_python::high_dimension::Cells cells;
+  {
+    py::gil_scoped_release release;
+    cells = dewall_python::high_dimension::triangulate(static_cast<const double*>(points.data()),
+                                                       static_cast<std::size_t>(points.shape(0)), d);
+  }
+  const auto rows = static_cast<py::ssize_t>(cells.count);
+  return py::make_tuple(adopt<std::int32_t>(std::move(cells.simplices), {rows, d + 1}),
+                        adopt<std::int32_t>(std::move(cells.neighbors), {rows, d + 1}));
+}
+
+/// Above 6 dimensions: Triangulation.locate() for triangulate_dd's arrays.
+py::array locate_dd(py::handle points_in, py::handle simplices_in, py::handle neighbors_in, py::handle queries) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const Element_type int32{'i', 4, "int32"};
+  const py::array simplices = checked(simplices_in, int32, d + 1, "simplices");
+  const py::array neighbors = checked(neighbors_in, int32, d + 1, "neighbors");
+  const py::array q = checked(queries, float64, d, "xi");
+  const auto count = static_cast<std::size_t>(simplices.shape(0));
+  if (static_cast<std::size_t>(neighbors.shape(0)) != count) throw py::value_error("neighbors: one row per simplex");
+  const auto* s = static_cast<const std::int32_t*>(simplices.data());
+  const auto* nb = static_cast<const std::int32_t*>(neighbors.data());
+  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
+    if (s[i] < 0 || s[i] >= points.shape(0) || nb[i] < -1 || nb[i] >= static_cast<std::int64_t>(count))
+      throw py::value_error("simplices, neighbors: an index out of range");
+  py::array_t<std::int32_t> out(q.shape(0));
+  std::int32_t* o = out.mutable_data();
+  {
+    py::gil_scoped_release release;
+    dewall_python::high_dimension::locate(static_cast<const double*>(points.data()),
+                                          static_cast<std::size_t>(points.shape(0)), static_cast<int>(d), s, nb, count,
+                                          static_cast<const double*>(q.data()), static_cast<std::size_t>(q.shape(0)),
+                                          o);
+  }
+  return out;
 }
 
 py::dict violation_dict(const dewall::certify::Violation& v) {
@@ -571,7 +630,10 @@ PYBIND11_MODULE(_dewall, m) {
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
-  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"));
+  m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"),
+        py::arg("cgal_dd") = false);
+  m.def("triangulate_dd", &triangulate_dd, py::arg("points"));
+  m.def("locate_dd", &locate_dd, py::arg("points"), py::arg("simplices"), py::arg("neighbors"), py::arg("xi"));
   m.def("convex_hull", &convex_hull, py::arg("points"));
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));

@@ -20,11 +20,18 @@ def test_no_copy_of_contiguous_float64(rng):
     assert not np.shares_memory(dewall.Delaunay(fortran).points, fortran)
 
 
-def test_outputs_are_read_only(rng):
-    tri = dewall.Delaunay(rng.random((50, 2)))
+@pytest.mark.parametrize("d", [2, 7])
+def test_simplices_writeable_without_misleading_find_simplex(rng, d):
+    # scipy's simplices are writeable (its test_nd_simplex sorts them in place); find_simplex walks
+    # the compiled copy, so it still answers right; neighbors stay read-only
+    points = rng.random((50, d))
+    tri = dewall.Delaunay(points)
     assert tri.simplices.dtype == np.int32 and tri.neighbors.dtype == np.int32
+    centroids = points[tri.simplices].mean(axis=1)
+    tri.simplices.sort()
+    np.testing.assert_array_equal(tri.find_simplex(centroids), np.arange(tri.nsimplex))
     with pytest.raises(ValueError):
-        tri.simplices[0, 0] = 1
+        tri.neighbors[0, 0] = 1
 
 
 def test_generate_matches_the_cli():

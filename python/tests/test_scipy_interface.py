@@ -146,8 +146,8 @@ def test_array_with_nans_fails():  # TestDelaunay.test_array_with_nans_fails
         dewall.Delaunay(np.array([(0, 0), (0, 1), (1, 1), (1, np.nan)]))
 
 
-@pytest.mark.parametrize("nd", range(2, 7))
-def test_nd_simplex(nd):  # TestDelaunay.test_nd_simplex (scipy: 2..7; dewall: 2..6)
+@pytest.mark.parametrize("nd", range(2, 9))
+def test_nd_simplex(nd):  # TestDelaunay.test_nd_simplex (scipy: 2..7; 7 and 8: CGAL's dD triangulation)
     points = np.zeros((nd + 1, nd))
     points[np.arange(nd), np.arange(nd)] = 1.0
     points[-1, :] = 1.0

@@ -4,7 +4,7 @@ test module is imported. HalfspaceIntersection (no dewall counterpart) is left o
 
     PYTHONPATH=build/python /usr/bin/python3 python/tools/run_scipy_qhull_tests.py [pytest options]
 
-The README's Python section lists the cases that fail and why (with scipy 1.10.1: 127 of 173 pass).
+The README's Python section lists the cases that fail and why (with scipy 1.10.1: 152 of 173 pass).
 Not part of the pytest suite: it takes scipy's test run time, and its failures are known.
 """
 
