@@ -19,8 +19,8 @@ using Rng = std::mt19937_64;
 // doubles; GCC and Clang's 128-bit integers hold them exactly.
 __extension__ typedef __int128 Int128;
 
-constexpr std::array<const char*, 8> kind_names = {"uniform", "ball",           "sphere", "bubbles",
-                                                   "grid",    "lattice-sphere", "planes", "torus"};
+constexpr std::array<const char*, 9> kind_names = {"uniform", "ball",           "sphere", "bubbles", "grid",
+                                                   "lattice-sphere", "planes", "torus", "scan"};
 
 /// A uniform double in [0, 1): the top 53 bits of one draw, scaled exactly.
 double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
@@ -116,6 +116,112 @@ void torus(Point_table& t, std::size_t n, double noise, Rng& rng, Progress* prog
     for (std::size_t j = 1; j + 1 < d; ++j) t.coordinates.push_back(tube * u[j]);
     tick(progress, i++);
   }
+}
+
+/// A simulated range scan, what a scanned surface looks like to a
+/// triangulator (3D only). The scene: a table top (the box [−1.2, 1.2]² ×
+/// [−0.1, 0]), on it a ball (radius 0.5), a smaller one (0.25), a box and an
+/// upright cylinder. Six scanners around it (radius 3, height 1.2, the first
+/// at a random angle) each shoot a regular grid of rays (azimuth × elevation:
+/// scan lines; density uneven over the surfaces, high where a surface is seen
+/// at a grazing angle); a ray's first hit is a point, moved along the ray by
+/// range noise (σ = 0.0005) and rounded to multiples of 2^-16, a scanner's
+/// resolution: the table's points lie on a few hundred exactly parallel
+/// planes, as a scanned floor's do. The grids are sized from a pilot grid so that they hit
+/// more than n times; n of the hits are kept at random.
+void scan(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+  using V = std::array<double, 3>;
+  constexpr double pi = 3.14159265358979323846, eps = 1e-9;
+  auto sub = [](const V& a, const V& b) { return V{a[0] - b[0], a[1] - b[1], a[2] - b[2]}; };
+  auto dot = [](const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+  struct Ball { V c; double r; };
+  struct Box { V lo, hi; };
+  struct Cylinder { double x, y, r, z0, z1; };
+  const Ball balls[] = {{{0.35, 0.3, 0.5}, 0.5}, {{-0.55, 0.55, 0.25}, 0.25}};
+  const Box boxes[] = {{{-1.2, -1.2, -0.1}, {1.2, 1.2, 0}}, {{-0.8, -0.75, 0}, {-0.3, -0.45, 0.4}}};
+  const Cylinder cylinder{0.55, -0.55, 0.2, 0, 0.8};
+  // The nearest hit at t > eps of the ray o + t·w (w of unit length), or infinity.
+  auto first_hit = [&](const V& o, const V& w) {
+    double best = HUGE_VAL;
+    for (const Ball& b : balls) {
+      const V oc = sub(o, b.c);
+      const double half_b = dot(w, oc), disc = half_b * half_b - (dot(oc, oc) - b.r * b.r);
+      if (disc < 0) continue;
+      const double root = std::sqrt(disc);
+      for (const double h : {-half_b - root, -half_b + root})
+        if (h > eps) { best = std::min(best, h); break; }
+    }
+    for (const Box& b : boxes) {  // slabs
+      double enter = -HUGE_VAL, leave = HUGE_VAL;
+      for (int j = 0; j < 3; ++j) {
+        if (w[j] == 0) {
+          if (o[j] < b.lo[j] || o[j] > b.hi[j]) enter = HUGE_VAL;
+          continue;
+        }
+        const double a = (b.lo[j] - o[j]) / w[j], c = (b.hi[j] - o[j]) / w[j];
+        enter = std::max(enter, std::min(a, c));
+        leave = std::min(leave, std::max(a, c));
+      }
+      if (enter <= leave && enter > eps) best = std::min(best, enter);
+    }
+    {  // the cylinder's side, then its top
+      const double dx = o[0] - cylinder.x, dy = o[1] - cylinder.y, a = w[0] * w[0] + w[1] * w[1];
+      const double half_b = dx * w[0] + dy * w[1], disc = half_b * half_b - a * (dx * dx + dy * dy - cylinder.r * cylinder.r);
+      if (a > 0 && disc >= 0) {
+        const double h = (-half_b - std::sqrt(disc)) / a, z = o[2] + h * w[2];
+        if (h > eps && z >= cylinder.z0 && z <= cylinder.z1) best = std::min(best, h);
+      }
+      if (w[2] != 0) {
+        const double h = (cylinder.z1 - o[2]) / w[2], x = o[0] + h * w[0] - cylinder.x, y = o[1] + h * w[1] - cylinder.y;
+        if (h > eps && x * x + y * y <= cylinder.r * cylinder.r) best = std::min(best, h);
+      }
+    }
+    return best;
+  };
+  constexpr int scanners = 6;
+  constexpr double half_width = 0.62;  // the grid's half-angle: the table's corners seen from 3 away
+  const double first = 2 * pi * uniform01(rng);
+  // Each scanner's rays on a side × side grid; `hit(o, w, h)` for every hit.
+  auto sweep = [&](int side, auto&& hit) {
+    for (int s = 0; s < scanners; ++s) {
+      const double phi = first + 2 * pi * s / scanners;
+      const V o{3 * std::cos(phi), 3 * std::sin(phi), 1.2};
+      const double azimuth0 = phi + pi, elevation0 = std::atan2(0.3 - 1.2, 3.0);
+      for (int i = 0; i < side; ++i) {
+        const double e = elevation0 + half_width * (2.0 * (i + 0.5) / side - 1);
+        for (int j = 0; j < side; ++j) {
+          const double a = azimuth0 + half_width * (2.0 * (j + 0.5) / side - 1);
+          const V w{std::cos(e) * std::cos(a), std::cos(e) * std::sin(a), std::sin(e)};
+          const double h = first_hit(o, w);
+          if (h != HUGE_VAL) hit(o, w, h);
+        }
+      }
+    }
+  };
+  constexpr int pilot = 64;
+  std::size_t pilot_hits = 0;
+  sweep(pilot, [&](const V&, const V&, double) { ++pilot_hits; });
+  const double per_ray = std::max(1.0, static_cast<double>(pilot_hits)) / (scanners * pilot * pilot);
+  std::vector<V> hits;
+  hits.reserve(static_cast<std::size_t>(1.2 * static_cast<double>(n)) + 16);
+  for (int side = static_cast<int>(std::ceil(std::sqrt(1.1 * static_cast<double>(n) / (scanners * per_ray)))) + 1;
+       hits.size() < n; side += side / 8 + 1) {  // (a finer grid in the rare case the pilot misjudged)
+    hits.clear();
+    sweep(side, [&](const V& o, const V& w, double h) {
+      const double range = h + 0.0005 * normal(rng);
+      V p;
+      for (int j = 0; j < 3; ++j) p[j] = std::nearbyint((o[j] + range * w[j]) * 0x1p16) * 0x1p-16;
+      hits.push_back(p);
+      tick(progress, std::min(hits.size(), n - 1));
+    });
+  }
+  // n of the hits at random, in the order they were scanned.
+  std::vector<std::size_t> pick(hits.size());
+  for (std::size_t i = 0; i < pick.size(); ++i) pick[i] = i;
+  for (std::size_t i = 0; i < n; ++i) std::swap(pick[i], pick[i + static_cast<std::size_t>(uniform01(rng) * static_cast<double>(pick.size() - i))]);
+  std::sort(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(n));
+  t.coordinates.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i) t.coordinates.insert(t.coordinates.end(), hits[pick[i]].begin(), hits[pick[i]].end());
 }
 
 /// The paper's "bubbles": a few clusters of random centre, size and weight, each
@@ -373,6 +479,8 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     throw std::invalid_argument(std::string("a plane count applies to kind planes only, not ") + point_kind_name(kind));
   if (!is_supported_dimension(dimension))
     throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
+  if (kind == Point_kind::scan && dimension != 3)
+    throw std::invalid_argument("kind scan is 3D only, not dimension " + std::to_string(dimension));
   if (n < static_cast<std::size_t>(dimension) + 1)
     throw std::invalid_argument("need at least " + std::to_string(dimension + 1) + " points in dimension " +
                                 std::to_string(dimension) + ", asked for " + std::to_string(n));
@@ -389,6 +497,7 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     case Point_kind::lattice_sphere: dimension == 2 ? lattice_sphere_2(t, n) : lattice_sphere_high(t, n); break;
     case Point_kind::planes: planes(t, n, options.planes, rng, progress); break;
     case Point_kind::torus: torus(t, n, noise, rng, progress); break;
+    case Point_kind::scan: scan(t, n, rng, progress); break;
   }
   if (progress) progress->finish();
   return t;

@@ -22,9 +22,12 @@ namespace {
 
 constexpr Point_kind all_kinds[] = {Point_kind::uniform, Point_kind::ball,           Point_kind::sphere,
                                     Point_kind::bubbles, Point_kind::grid,           Point_kind::lattice_sphere,
-                                    Point_kind::planes,  Point_kind::torus};
-constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball,   Point_kind::sphere,
-                                       Point_kind::bubbles, Point_kind::planes, Point_kind::torus};
+                                    Point_kind::planes,  Point_kind::torus,          Point_kind::scan};
+constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball,   Point_kind::sphere, Point_kind::bubbles,
+                                       Point_kind::planes,  Point_kind::torus,  Point_kind::scan};
+
+/// Whether `kind` is made in dimension d (a scan is 3D only).
+bool made_in(Point_kind kind, int d) { return kind != Point_kind::scan || d == 3; }
 
 double coordinate(const Point_table& t, std::size_t i, int j) {
   return t.coordinates[i * static_cast<std::size_t>(t.dimension) + static_cast<std::size_t>(j)];
@@ -51,6 +54,7 @@ TEST_CASE("generators: names round-trip", "[generate]") {
 TEST_CASE("generators: reproducible from the seed, different for another seed", "[generate]") {
   for (int d = 2; d <= 6; ++d)
     for (auto kind : all_kinds) {
+      if (!made_in(kind, d)) continue;
       INFO("kind " << dewall::io::point_kind_name(kind) << ", dimension " << d);
       const auto a = generate_points(kind, 200, d, 12345);
       const auto b = generate_points(kind, 200, d, 12345);
@@ -168,7 +172,7 @@ TEST_CASE("generators: bubbles are clustered", "[generate]") {
 TEST_CASE("generators: every kind triangulates", "[generate]") {
   for (auto kind : all_kinds) {
     INFO("kind " << dewall::io::point_kind_name(kind));
-    CHECK(triangulated_simplices<2>(generate_points(kind, 300, 2, 5)) > 0);
+    if (made_in(kind, 2)) CHECK(triangulated_simplices<2>(generate_points(kind, 300, 2, 5)) > 0);
     CHECK(triangulated_simplices<3>(generate_points(kind, 150, 3, 5)) > 0);
   }
 }
@@ -202,6 +206,7 @@ TEST_CASE("generators: torus points lie on the torus surface", "[generate]") {
 TEST_CASE("generators: noise 0 is the noiseless generator, bit for bit", "[generate]") {
   for (int d = 2; d <= 6; ++d)
     for (auto kind : all_kinds) {
+      if (!made_in(kind, d)) continue;
       INFO("kind " << dewall::io::point_kind_name(kind) << ", dimension " << d);
       const auto a = generate_points(kind, 300, d, 77);
       const auto b = generate_points(kind, 300, d, 77, dewall::io::Generator_options{.noise = 0});
@@ -270,4 +275,35 @@ TEST_CASE("generators: planes with a chosen count", "[generate]") {
   CHECK_THROWS_AS(generate_points(Point_kind::planes, 100, 3, 0, Generator_options{.planes = 1001}), std::invalid_argument);
   CHECK_THROWS_WITH(generate_points(Point_kind::uniform, 100, 3, 0, Generator_options{.planes = 2}),
                     Catch::Contains("kind planes only"));
+}
+
+TEST_CASE("generators: a scan's points lie on the scene, on the scanner's grid, the table's on shared planes",
+          "[generate]") {
+  CHECK_THROWS_WITH(generate_points(Point_kind::scan, 100, 2, 0), Catch::Contains("3D only"));
+  CHECK_THROWS_WITH(generate_points(Point_kind::scan, 100, 4, 0), Catch::Contains("3D only"));
+  for (const std::size_t n : {std::size_t{4}, std::size_t{3000}}) {
+    const auto t = generate_points(Point_kind::scan, n, 3, 21);
+    REQUIRE(t.size() == n);
+    std::map<double, std::size_t> heights;  // z → points
+    for (std::size_t i = 0; i < n; ++i) {
+      for (int j = 0; j < 3; ++j) CHECK(is_integer(coordinate(t, i, j) * 0x1p16));  // the 2^-16 grid
+      // In the scene's box (the table [−1.2, 1.2]² × [−0.1, 0], the cylinder up to 0.8),
+      // give or take the range noise (σ = 0.0005).
+      CHECK(std::abs(coordinate(t, i, 0)) <= 1.21);
+      CHECK(std::abs(coordinate(t, i, 1)) <= 1.21);
+      CHECK((coordinate(t, i, 2) >= -0.11 && coordinate(t, i, 2) <= 1.01));
+      ++heights[coordinate(t, i, 2)];
+    }
+    if (n < 1000) continue;
+    // Most rays hit the table top (z = 0 up to the noise): many points share a height exactly.
+    std::size_t near_table = 0, largest_plane = 0;
+    for (const auto& [z, count] : heights) {
+      if (std::abs(z) < 0.005) near_table += count;
+      largest_plane = std::max(largest_plane, count);
+    }
+    CHECK(near_table > n / 4);
+    CHECK(largest_plane >= 10);
+    // Above the table: the objects were seen (points up to the balls' and the cylinder's tops).
+    CHECK(heights.rbegin()->first > 0.7);
+  }
 }

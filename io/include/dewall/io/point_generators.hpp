@@ -32,6 +32,7 @@ enum class Point_kind {
   lattice_sphere,  ///< all integer points with |p|² = m, m chosen for about N points (exactly cospherical)
   planes,          ///< points on a few hyperplanes x_{D−1} = const (exactly coplanar per plane)
   torus,           ///< uniform on a torus surface (R = 1, r = 0.3), like a scanned object's surface
+  scan,            ///< a simulated range scan of objects on a table (3D only): scan lines, a 2^-16 grid
 };
 
 /// Options of a generator beyond kind, size, dimension and seed.
@@ -52,7 +53,7 @@ struct Generator_options {
 };
 
 /// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
-/// "lattice-sphere", "planes", "torus"), or nothing.
+/// "lattice-sphere", "planes", "torus", "scan"), or nothing.
 std::optional<Point_kind> parse_point_kind(std::string_view name);
 /// The name of `kind`, as parse_point_kind accepts it.
 const char* point_kind_name(Point_kind kind);
@@ -63,7 +64,8 @@ std::string point_kind_names();
 /// n for the random kinds), from an engine seeded with `seed`. The deterministic
 /// kinds (grid, lattice-sphere) ignore the seed.
 /// `progress`, when given, receives the number of points made so far.
-/// \throws std::invalid_argument for a dimension outside 2 … 6 or n < dimension + 1.
+/// \throws std::invalid_argument for a dimension outside 2 … 6 (scan: other
+/// than 3) or n < dimension + 1.
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
                             Progress* progress = nullptr);
 /// As above, with `options` (Generator_options::noise).
