@@ -134,9 +134,15 @@ class Wall_builder {
     const std::vector<Coords<D>>& coords;
     const Split<D>& split;
     Active_face_list<D> wall, side1, side2;
-    Active_face_list<D>& operator()(const Face<D>& f) {
+    /// How many of the vertices (a face's or a simplex's) lie on side 1.
+    template <class Vertices>
+    int side1_count(const Vertices& vertices) const {
       int n1 = 0;
-      for (Index v : f) n1 += split.on_side1(coords[v], v);
+      for (Index v : vertices) n1 += split.on_side1(coords[v], v);
+      return n1;
+    }
+    Active_face_list<D>& operator()(const Face<D>& f) {
+      const int n1 = side1_count(f);
       return n1 == D ? side1 : n1 == 0 ? side2 : wall;
     }
   };
@@ -268,18 +274,16 @@ class Wall_builder {
     struct Filter final : Region_filter<D> {
       Wall_builder& builder;
       const Region_bounds<D>& bounds;
-      const Split<D>& split;
-      Face_lists& lists;
+      Face_lists& lists;  // (its split is α's)
       Task& task;
       std::size_t depth;
       std::size_t kept = 0;
-      Filter(Wall_builder& b, const Region_bounds<D>& bo, const Split<D>& sp, Face_lists& l, Task& t, std::size_t d)
-          : builder(b), bounds(bo), split(sp), lists(l), task(t), depth(d) {}
+      Filter(Wall_builder& b, const Region_bounds<D>& bo, Face_lists& l, Task& t, std::size_t d)
+          : builder(b), bounds(bo), lists(l), task(t), depth(d) {}
       void begin(std::size_t) override {}
       bool asks_every_cell() const override { return true; }
       bool empty_of_others(const Simplex<D>& s) override {
-        int n1 = 0;
-        for (Index v : s) n1 += split.on_side1(builder.ps_.coords[v], v);
+        const int n1 = lists.side1_count(s);
         if (n1 == 0 || n1 == D + 1) return false;  // not a wall simplex: the halves' own
         bool searched = false;
         return builder.empty_of_outside(s, bounds, task.search, searched);
@@ -293,7 +297,7 @@ class Wall_builder {
             lists(g).update(g);
           }
       }
-    } filter(*this, slab.bounds, split, lists, task, p.depth);
+    } filter(*this, slab.bounds, lists, task, p.depth);
     return (*regions_)(slab.points, ps_.coords, filter) && filter.kept > 0;
   }
 
