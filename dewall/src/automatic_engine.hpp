@@ -5,9 +5,10 @@
 // behind each step):
 //  1. In 4D and up: the incremental construction alone (the walls and the
 //     regions' filter only add to it there).
-//  2. At most one region's worth of distinct points (region_points_for): the
-//     incremental construction alone (a wall and two half regions gain
-//     nothing over one region).
+//  2. At most automatic_whole_limit distinct points (options.hpp: 524288
+//     collected with the default regions, else one region's worth): the
+//     incremental construction alone (below that the walls and regions cost
+//     more than they gain on one thread and on two).
 //  3. Otherwise the hybrid (wall_engines.hpp) with a Search_budget charged by
 //     every search; when the walls' searches prove too costly, or a region
 //     saves no search (handover_rule.hpp, the whole rule of a spent budget),
@@ -36,7 +37,7 @@ Statistics triangulate_automatic(std::span<const kernel::Point_d<D>> points, con
   if constexpr (D >= 4) return incremental.whole(points, output);
   // The input checks once, for both engines.
   const std::vector<std::size_t> distinct = distinct_points<K>(K{}, points);
-  if (distinct.size() <= region_points_for(options, distinct.size())) return incremental.whole(points, output, &distinct);
+  if (distinct.size() <= automatic_whole_limit(options, distinct.size())) return incremental.whole(points, output, &distinct);
   const Hybrid<D> hybrid{incremental.regions(),
                          Search_budget(options.handover_candidates_per_search, points.size(), D), &distinct};
   try {

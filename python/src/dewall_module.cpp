@@ -413,7 +413,7 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   double* o = out.mutable_data();
   const auto width = static_cast<std::size_t>(d);
   for (std::size_t s = 0; s < count; ++s, index += d + 1, o += (d + 1) * d) transform_row(x, index, width, rcond_limit, o);
-  return std::move(out);
+  return out;
 }
 
 /// The exact predicates on rows of point indices, for constructions the

@@ -97,7 +97,7 @@ std::int8_t perturbed_side(const K& k, const std::vector<const Point*>& s, const
 /// 7-D) or of the dynamic one (every other dimension).
 template <class Kd>
 Cells triangulate_with(const double* x, std::size_t n, int d) {
-  using Point = typename Kd::Point_d;
+  using Kd_point = typename Kd::Point_d;
   using Triangulation = CGAL::Delaunay_triangulation<Kd>;
   for (std::size_t i = 0; i < n; ++i)
     for (int j = 0; j < d; ++j)
@@ -114,7 +114,7 @@ Cells triangulate_with(const double* x, std::size_t n, int d) {
   if (heads.size() < static_cast<std::size_t>(d) + 1)
     throw dewall::Invalid_input("need at least " + std::to_string(d + 1) + " distinct points in dimension " +
                                 std::to_string(d) + ", got " + std::to_string(heads.size()));
-  std::vector<Point> points;
+  std::vector<Kd_point> points;
   points.reserve(heads.size());
   for (const std::uint32_t h : heads) points.emplace_back(x + h * std::size_t(d), x + (h + 1) * std::size_t(d));
 
@@ -127,7 +127,7 @@ Cells triangulate_with(const double* x, std::size_t n, int d) {
                                 std::to_string(dt.current_dimension()) + ")");
 
   // 2. the finite full cells, numbered; input indices of their vertices
-  const auto index_of = [&](const Point& p) {
+  const auto index_of = [&](const Kd_point& p) {
     std::vector<double> c(p.cartesian_begin(), p.cartesian_end());
     const auto it = std::lower_bound(heads.begin(), heads.end(), c.data(), [&](std::uint32_t h, const double* v) {
       return row_less(x + h * std::size_t(d), v, d);
@@ -142,7 +142,7 @@ Cells triangulate_with(const double* x, std::size_t n, int d) {
   cells.simplices.resize(cells.count * width);
   cells.neighbors.resize(cells.count * width);
   const auto orientation = dt.geom_traits().orientation_d_object();
-  std::vector<const Point*> corners(width);
+  std::vector<const Kd_point*> corners(width);
   for (auto c = dt.finite_full_cells_begin(); c != dt.finite_full_cells_end(); ++c) {
     const std::size_t i = static_cast<std::size_t>(number.at(&*c));
     std::int32_t* row = &cells.simplices[i * width];

@@ -174,7 +174,7 @@ TEST_CASE("the help and README state the region sizes of the code", "[cli][docs]
       "regions of n/4 points (" + n(dewall::smallest_default_region) + " to " + n(dewall::largest_default_region) + ")",
       "regions of at most " + n(dewall::largest_default_streaming_region) + " points",
       "differ above " + n(4 * dewall::largest_default_streaming_region) + " points",
-      "one region's size (" + n(dewall::smallest_default_region) + " points)"};
+      "inputs of up to " + n(dewall::largest_automatic_whole_input) + " points"};
   std::ifstream in(std::string(DEWALL_SOURCE_DIR) + "/README.md");
   REQUIRE(in);
   const std::string readme{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};

@@ -210,10 +210,11 @@ TEST_CASE("command line: the restart for huge pages keeps the arguments and stan
 TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
   const dewall::test::Cli_in_directory cli("cli_test_stream");
   using dewall::test::slurp;
-  // 40,000 points: walls and regions of 16384 points (streaming takes at most 32768).
+  // 40,000 points: walls and regions of 16384 points (streaming takes at most 32768; collected,
+  // so few points would have no walls but for --region-points).
   REQUIRE(cli("generate uniform 40000 --seed 3 -o p.dwpt").status == 0);
   SECTION("the collected bytes on one thread, the same set on all cores, certified") {
-    REQUIRE(cli("triangulate p.dwpt --threads 1 -o collected.dwsx").status == 0);
+    REQUIRE(cli("triangulate p.dwpt --threads 1 --region-points 16384 -o collected.dwsx").status == 0);
     REQUIRE(cli("triangulate p.dwpt --threads 1 --stream -o streamed.dwsx").status == 0);
     CHECK(slurp(cli.path("streamed.dwsx")) == slurp(cli.path("collected.dwsx")));  // the count too
     REQUIRE(cli("triangulate p.dwpt --stream -o all_cores.dwsx --stats").status == 0);
@@ -229,7 +230,7 @@ TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
     CHECK(report("1").find("\"canonical\":true") != std::string::npos);
     CHECK(cli("certify p.dwpt all_cores.dwsx --threads 0").status == 2);
     // The plain list on standard output, the same lines in the same order.
-    const auto plain = cli("triangulate p.dwpt --threads 1");
+    const auto plain = cli("triangulate p.dwpt --threads 1 --region-points 16384");
     const auto plain_streamed = cli("triangulate p.dwpt --threads 1 --stream");
     REQUIRE(plain.status == 0);
     CHECK(!plain.out.empty());

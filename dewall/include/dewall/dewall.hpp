@@ -155,7 +155,8 @@ class Sink_output final : public Simplex_output<D> {
 /// and not kept (memory: the points, the search structure and the regions in
 /// progress); the set is the same, and with one thread (Options::threads = 1)
 /// so is the order, given the same Options::region_points (by default
-/// streaming takes smaller regions above 131072 points). The sink is never called concurrently, but with
+/// streaming takes smaller regions above 131072 points, and Engine::automatic
+/// collecting builds up to automatic_whole_limit points without regions). The sink is never called concurrently, but with
 /// more threads it is called from several, in an order that depends on
 /// their timing. A sink with a member reserve(n) is told the number of
 /// simplices before the first one when that is known (collected output, and

@@ -15,10 +15,11 @@ enum class Engine {
   /// construction when the walls' searches prove the input is one no
   /// gift-wrapping search is fast on (points on or near one sphere, thin
   /// surfaces, lattices): see Options::handover_candidates_per_search. An
-  /// input of at most one region's size (Options::region_points: 16384 distinct
-  /// points by default) is one region, built by the incremental construction
-  /// alone (a wall and two half regions cost more on one thread and gain
-  /// little on two). In 4D and up, the incremental construction alone (the
+  /// input of at most automatic_whole_limit distinct points (524288 when
+  /// collected with the default region size; one region's size otherwise) is
+  /// built by the incremental construction alone: up to there the walls and
+  /// regions cost 1.3–1.9× its time on one thread and gain nothing on two
+  /// (docs/engines.md). In 4D and up, the incremental construction alone (the
   /// walls only add to it there).
   /// "The incremental construction" is the project's own (Engine::incremental)
   /// where it is measured faster than CGAL's, CGAL's (Engine::cgal) elsewhere:
@@ -132,7 +133,8 @@ struct Options {
   /// triangulate_to hands the simplices to its sink as they are built, and
   /// does not keep them (dewall.hpp). The same simplices; with one thread in
   /// the order collecting gives with the same region_points (by default
-  /// streaming takes smaller regions above 131072 points), with more in an
+  /// streaming takes smaller regions above 131072 points, and Engine::automatic
+  /// collecting builds up to automatic_whole_limit points without regions), with more in an
   /// order that depends on the threads' timing.
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
   /// once whether to hand over to the incremental engine: it holds what it
@@ -150,11 +152,27 @@ inline constexpr std::size_t smallest_default_region = 16384;
 inline constexpr std::size_t largest_default_region = 262144;
 inline constexpr std::size_t largest_default_streaming_region = 32768;
 
+/// Engine::automatic builds collected inputs of at most this many distinct
+/// points by the incremental construction alone (automatic_whole_limit).
+inline constexpr std::size_t largest_automatic_whole_input = 524288;
+
 /// The region size Options::region_points asks for, for n points.
 constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
   if (o.region_points) return o.region_points;
   const std::size_t largest = o.stream ? largest_default_streaming_region : largest_default_region;
   return n / 4 < smallest_default_region ? smallest_default_region : n / 4 > largest ? largest : n / 4;
+}
+
+/// The most distinct points Engine::automatic leaves to the incremental
+/// construction alone, without walls: one region's size, and when collected
+/// with the default region size at least largest_automatic_whole_input (a
+/// user who sets Options::region_points asks for regions; streaming, which
+/// is for memory, keeps its small regions). Fixed by n and the options,
+/// never by the number of threads.
+constexpr std::size_t automatic_whole_limit(const Options& o, std::size_t n) {
+  const std::size_t region = region_points_for(o, n);
+  if (o.region_points || o.stream) return region;
+  return region > largest_automatic_whole_input ? region : largest_automatic_whole_input;
 }
 
 /// Counters for the paper's Table 1, filled by triangulate.
