@@ -432,6 +432,23 @@ TEMPLATE_TEST_CASE_SIG("permanent filter and interval gate: points near a sphere
     run(points);
     run(dewall::test::lattice_points<D>(rng, D + 2, -(1L << 20), 1L << 20));
     run(dewall::test::lattice_points<D>(rng, D + 2, -2, 2));
+    // Exactly cospherical doubles of full precision: signed permutations of
+    // one vector with entries in [0.5, 1) (the exact stage's fixed-width path,
+    // whose last level in double must then see the exact zero).
+    std::uniform_real_distribution<double> half(0.5, 1);
+    std::array<double, D> v;
+    for (auto& x : v) x = half(rng);
+    std::vector<Point<D>> cospherical;
+    for (int attempts = 0; cospherical.size() < D + 2 && attempts < 1000; ++attempts) {
+      std::array<int, D> order;
+      for (int j = 0; j < D; ++j) order[static_cast<std::size_t>(j)] = j;
+      std::shuffle(order.begin(), order.end(), rng);
+      Point<D> q;
+      for (int j = 0; j < D; ++j)
+        q.x[static_cast<std::size_t>(j)] = (coin(rng) % 2 ? 1 : -1) * v[static_cast<std::size_t>(order[static_cast<std::size_t>(j)])];
+      if (std::find(cospherical.begin(), cospherical.end(), q) == cospherical.end()) cospherical.push_back(q);
+    }
+    run(cospherical);
   }
   // Extreme magnitudes: the near-sphere points scaled by 2^±600 (the filter
   // leaves its domain; the stage must then decline or be right).

@@ -281,17 +281,20 @@ constexpr bool small_integers_fit_128() {
          125;
 }
 
+/// `integers`: small_integer_coordinates(p), when the caller knows it.
 template <class Recipe, int D>
-Sign exact(const Point_refs<D, Recipe::arity>& p) {
+Sign exact(const Point_refs<D, Recipe::arity>& p, bool integers) {
   constexpr int N = Recipe::arity * D;
   constexpr int K = Recipe::size;
   // Integer inputs (lattices, cospherical integer points: every sphere test
   // an exact zero) skip the common scale and the bit count: the bound holds
-  // for all of them.
+  // for all of them. (Converted through 64 bits: a double to __int128 is a
+  // library call.)
   if constexpr (small_integers_fit_128<Recipe, D>()) {
-    if (small_integer_coordinates<Recipe, D>(p)) {
-      const auto m = Recipe::template matrix<Int128>(
-          [&](int i, int j) { return static_cast<Int128>((*p[static_cast<std::size_t>(i)])[j]); });
+    if (integers) {
+      const auto m = Recipe::template matrix<Int128>([&](int i, int j) {
+        return static_cast<Int128>(static_cast<std::int64_t>((*p[static_cast<std::size_t>(i)])[j]));
+      });
       return Recipe::sign_adjust * sign_of(determinant<Int128, K>(m));
     }
   }
@@ -325,6 +328,10 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
   Recipe::fill(w.m, [&](int i, int j) -> const Exact_integer& { return w.integers[i * D + j]; });
   return Recipe::sign_adjust * static_cast<Sign>(determinant_sign_in_place<K>(w.m, w.minor));
 }
+template <class Recipe, int D>
+Sign exact(const Point_refs<D, Recipe::arity>& p) {
+  return exact<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
+}
 
 /// Stage 1b, for small integer inputs (lattices, grids: every tie exact),
 /// also after a common power-of-two scale (a lattice of spacing 2^-6 is one
@@ -344,13 +351,13 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 /// so the result is exactly ±0, the right answer.) The product is formed in
 /// double: each rounding is relative 2^-52 at most, far inside the margin
 /// (the test asks 2^52 where 2^53 would do).
+/// `integers`: small_integer_coordinates(p) (integers already, a lattice as
+/// given: no scale to take out; tested first, because frexp and ldexp on
+/// every coordinate cost more than the rest of the stage: grid 10^5, a
+/// fifth of the run).
 template <class Recipe, int D>
-std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
+std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p, bool integers) {
   constexpr int K = Recipe::size;
-  // Integers already (a lattice as given): no scale to take out. This test
-  // first, because frexp and ldexp on every coordinate cost more than the
-  // rest of the stage (grid 10^5: a fifth of the run).
-  const bool integers = small_integer_coordinates<Recipe, D>(p);
   // q: the exponent of the lowest set bit over all coordinates (x = odd · 2^e).
   int q = integers ? 0 : std::numeric_limits<int>::max();
   for (int i = 0; i < Recipe::arity && !integers; ++i)
@@ -388,6 +395,10 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   const double det = determinant<double, K>(m);
   return Recipe::sign_adjust * sign_of(det);
 }
+template <class Recipe, int D>
+std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
+  return exact_in_double<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
+}
 
 /// The stages after an undecided filter, under a guard of the floating-point
 /// environment (they assume round-to-nearest and gradual underflow). Out of
@@ -408,7 +419,8 @@ template <class Recipe, int D>
   // cannot decide: go straight to the exact stage. Skipping a stage never
   // changes an answer, only its cost.
   Slow_path_counts& slow = slow_path_counts();
-  if (auto s = exact_in_double<Recipe, D>(p)) {
+  const bool integers = small_integer_coordinates<Recipe, D>(p);
+  if (auto s = exact_in_double<Recipe, D>(p, integers)) {
     count(stats.exact);  // an exact answer, if a cheap one
     ++slow.exact;
     return *s;
@@ -430,7 +442,7 @@ template <class Recipe, int D>
   }
   count(stats.exact);
   ++slow.exact;
-  return exact<Recipe, D>(p);
+  return exact<Recipe, D>(p, integers);
 }
 
 /// The cascade, counting which stage decided. Exact in any floating-point
