@@ -19,7 +19,6 @@
 
 #include <array>
 #include <bit>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -118,16 +117,6 @@ class Wide_integer {
       if (x != 0) return 1;
     return 0;
   }
-  /// The value rounded to a double, within a relative error γ_{2L} (u =
-  /// 2^-53, round to nearest): |value| = Σ_k limb_k·2^(64k) summed from the top
-  /// limb down, each limb's conversion and each sum rounded once, every term
-  /// nonnegative; scaling by 2^64 is exact (no overflow: 2^(64L) ≤ 2^320 here).
-  double to_double() const {
-    const Wide_integer m = negative() ? -*this : *this;
-    double r = 0;
-    for (int i = L - 1; i >= 0; --i) r = r * 0x1p64 + static_cast<double>(m.limb_[static_cast<std::size_t>(i)]);
-    return negative() ? -r : r;
-  }
   /// Bits of |value| (the value not −2^(bits−1)).
   int magnitude_bits() const {
     const Wide_integer m = negative() ? -*this : *this;
@@ -211,37 +200,6 @@ std::optional<int> small_entry_determinant_sign(const Matrix<Uint128, K>& a) {
     level2[mask] = Wide_integer<2>::of(static_cast<Int128>(e[i0][0]) * e[i1][1] -
                                        static_cast<Int128>(e[i1][0]) * e[i0][1]);
   });
-  // The last level first in double, from the exact minors of the level
-  // below: those hold all the cancellation (points near a sphere: flat
-  // cells, spatial minors far below their entries' products), so the double
-  // sum Σ_i ±a[i][K−1]·m_i, m_i the exact minors rounded, is nearly always
-  // far from zero compared with its rounding error, and the widest level (the
-  // most limb products) is skipped. Error: each term carries at most
-  // 4 (the entry, a Wide_integer<2>, converted: γ_4) + 2·L (the minor of L
-  // limbs) + 1 (the product) + K − 1 (the sum, left to right) rounding
-  // factors, F in all, so |sum − det| ≤ γ_F·Σ_i |a[i][K−1]·m_i|; the
-  // computed Σ|t_i| is within (1 − γ_{F+K}) of it, covered with the bound's
-  // own roundings by the (1 + 2^-30) margin. Values stay below 2^330: no
-  // overflow; integers: no underflow. Rounding to nearest (the exact stage
-  // runs under a guard of the environment).
-  const auto last_level_in_double = [&](const auto& below) -> int {
-    constexpr int below_limbs = static_cast<int>(sizeof(below[0]) / sizeof(std::uint64_t));
-    constexpr int factors = 4 + 2 * below_limbs + 1 + (K - 1);
-    constexpr double epsilon = factors * 0x1p-53 / (1 - factors * 0x1p-53) * (1 + 0x1p-30);
-    constexpr unsigned all = (1u << K) - 1;
-    double sum = 0, magnitude = 0;
-    detail::static_for<0, K>([&](auto i) {
-      constexpr bool negate = (K - 1 - i) % 2 == 1;  // (−1)^(#{rows below i} + K − 1), all rows in the set
-      double entry;
-      if constexpr (lifted) entry = Wide_integer<2>::of(static_cast<Int128>(a[i][K - 1])).to_double();
-      else entry = static_cast<double>(e[i][K - 1]);
-      const double t = entry * below[all & ~(1u << i)].to_double();
-      sum += negate ? -t : t;
-      magnitude += std::fabs(t);
-    });
-    const double bound = epsilon * magnitude;
-    return sum > bound ? 1 : sum < -bound ? -1 : 0;
-  };
   // Levels 3 … K, each in its own width.
   const auto next_level = [&](auto r_constant, const auto& below) {
     constexpr int r = decltype(r_constant)::value;
@@ -269,8 +227,6 @@ std::optional<int> small_entry_determinant_sign(const Matrix<Uint128, K>& a) {
     // Unrolled K − 2 levels, each returning the next width's array.
     auto expand = [&](auto self, auto r_constant, const auto& below) -> int {
       constexpr int r = decltype(r_constant)::value;
-      if constexpr (r == K)
-        if (const int s = last_level_in_double(below)) return s;
       const auto level = next_level(r_constant, below);
       if constexpr (r == K) return level[(1u << K) - 1].sign();
       else return self(self, std::integral_constant<int, r + 1>{}, level);
