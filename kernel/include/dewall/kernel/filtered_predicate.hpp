@@ -132,7 +132,7 @@ template <class Recipe, int D>
 
 constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1); }
 
-/// Stage 2: the filter's own double determinant `computed`, against a bound
+/// Stage 2a: the filter's own double determinant `computed`, against a bound
 /// from this call's entries instead of their column maxima. Where the
 /// filter's bound is too coarse (points near one sphere: every monomial far
 /// below K!·Π_j M_j), this decides what the interval stage would, at a tenth
@@ -206,7 +206,7 @@ Interval_gate& interval_gate() {
   return gate;
 }
 
-/// Stage 2: the same determinant in interval arithmetic (no domain limits).
+/// Stage 2b: the same determinant in interval arithmetic (no domain limits).
 template <class Recipe, int D>
 std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
   const auto m = Recipe::template matrix<Interval>(
@@ -246,18 +246,6 @@ std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordi
   return std::nullopt;
 }
 
-/// Stage 3: the same determinant over exact integers: 128-bit integers when a
-/// bound proves they cannot overflow (exactly degenerate inputs are mostly small
-/// integers: lattices, cospherical integer points), then integers as wide as
-/// each minor needs when the differences fit 62 bits (doubles on one scale:
-/// points on spheres and surfaces, near ties the filters cannot decide), GMP
-/// otherwise. Exact for every finite input.
-/// 128-bit overflow bound: every value the expansion forms (entries, partial sums,
-/// minors) is at most K!·Π_j M_j in magnitude, M_j the largest entry of column j
-/// (a minor of size r is a sum of r! products of entries from distinct columns).
-/// Inputs of at most 40 bits keep the entries themselves (differences, sums of
-/// D squares) below 2^90; the determinant path is taken when
-/// log2(K!) + Σ_j bits(M_j) ≤ 125.
 /// Whether every coordinate is an integer of magnitude at most 2^20.
 template <class Recipe, int D>
 bool small_integer_coordinates(const Point_refs<D, Recipe::arity>& p) {
@@ -281,6 +269,18 @@ constexpr bool small_integers_fit_128() {
          125;
 }
 
+/// Stage 3: the same determinant over exact integers: 128-bit integers when a
+/// bound proves they cannot overflow (exactly degenerate inputs are mostly small
+/// integers: lattices, cospherical integer points), then integers as wide as
+/// each minor needs when the differences fit 62 bits (doubles on one scale:
+/// points on spheres and surfaces, near ties the filters cannot decide), GMP
+/// otherwise. Exact for every finite input.
+/// 128-bit overflow bound: every value the expansion forms (entries, partial sums,
+/// minors) is at most K!·Π_j M_j in magnitude, M_j the largest entry of column j
+/// (a minor of size r is a sum of r! products of entries from distinct columns).
+/// Inputs of at most 40 bits keep the entries themselves (differences, sums of
+/// D squares) below 2^90; the determinant path is taken when
+/// log2(K!) + Σ_j bits(M_j) ≤ 125.
 /// `integers`: small_integer_coordinates(p), when the caller knows it.
 template <class Recipe, int D>
 Sign exact(const Point_refs<D, Recipe::arity>& p, bool integers) {
