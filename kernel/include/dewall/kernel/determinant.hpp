@@ -88,6 +88,34 @@ template <int Top, class T, int K>
   });
 }
 
+/// The permanent of `a` (the expansion above with every sign +), over the
+/// same minors in the same order. On a matrix of |entries| it is the sum of
+/// the |monomials| of the determinant: the quantity the error of the
+/// computed determinant is proportional to (filtered_predicate.hpp, stage 2).
+template <class T, int K>
+[[gnu::always_inline]] inline T permanent(const Matrix<T, K>& a) {
+  if constexpr (K == 1) {
+    return a[0][0];
+  } else {
+    constexpr const auto& table = detail::minor_masks<K>;
+    std::array<T, (1 << K)> minor;
+    detail::static_for<0, K>([&](auto j) { minor[std::size_t{1} << j] = a[K - 1][j]; });
+    detail::static_for<2, K + 1>([&](auto r) {
+      const auto& row = a[static_cast<std::size_t>(K - r)];
+      detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
+        constexpr unsigned mask = table.masks[t];
+        constexpr int lowest = std::countr_zero(mask);
+        T sum = row[lowest] * minor[mask & ~(1u << lowest)];
+        detail::static_for<lowest + 1, K>([&](auto j) {
+          if constexpr ((mask & (1u << j)) != 0) sum += row[j] * minor[mask & ~(1u << j)];
+        });
+        minor[mask] = sum;
+      });
+    });
+    return minor[(1u << K) - 1];
+  }
+}
+
 /// The determinant of `a`, computed by the shared-minor Laplace expansion above.
 template <class T, int K>
 [[gnu::always_inline]] inline T determinant(const Matrix<T, K>& a) {

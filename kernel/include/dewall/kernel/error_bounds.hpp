@@ -80,6 +80,19 @@ constexpr double side_of_sphere_epsilon(int d) {
   return filter_epsilon(side_of_sphere_factors(d), d + 1);
 }
 
+/// The permanent stage (filtered_predicate.hpp): step 2 before its last
+/// inequality, |fl(det) − det| ≤ γ_N·perm(|X|), with the same margin as
+/// filter_epsilon for the computed permanent (the derivation is there).
+constexpr double permanent_epsilon(int factors) { return gamma(factors) * (1 + 0x1p-30); }
+
+/// 2^e, at compile time.
+constexpr double power_of_two(int e) {
+  double v = 1;
+  for (; e > 0; --e) v *= 2;
+  for (; e < 0; ++e) v /= 2;
+  return v;
+}
+
 /// Step 4: the range of spatial column maxima inside which the filter is valid.
 inline constexpr double min_column_max = 0x1p-100;
 inline constexpr double max_column_max = 0x1p+100;

@@ -1,4 +1,5 @@
-// The one cascade every predicate runs: static filter → interval → exact.
+// The one cascade every predicate runs: static filter → permanent filter →
+// interval → exact.
 //
 // A predicate is described by a *recipe*: the K×K matrix whose determinant's
 // sign it is, written once as a template over the number type. The stages below
@@ -131,7 +132,81 @@ template <class Recipe, int D>
 
 constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1); }
 
-/// Stage 2: the same determinant in interval arithmetic (no domain limits).
+/// Stage 2a: the filter's own double determinant `computed`, against a bound
+/// from this call's entries instead of their column maxima. Where the
+/// filter's bound is too coarse (points near one sphere: every monomial far
+/// below K!·Π_j M_j), this decides what the interval stage would, at a tenth
+/// of its cost (one more expansion in double, no interval products).
+/// Derivation (error_bounds.hpp, steps 1, 2 and 4):
+///  * Step 2 before its last inequality: |fl(det) − det| ≤ γ_N·perm(|X|), X
+///    the exact entries, for the filter's computation in any rounding mode.
+///  * P̂ = perm(|X̂|) computed here (round to nearest, under the caller's
+///    guard) from recomputed entries: every entry and monomial is a product of
+///    nonnegative terms, so P̂ ≥ perm(|X|)·(1 − γ_{c(K) + K(D+2)}) (each
+///    computed |x̂| ≥ |x|·(1 − γ_{D+2}), each monomial and sum rounded at most
+///    c(K) times), at least perm(|X|)·(1 − 2^-45) for K ≤ 7. The (1 + 2^-30)
+///    margin of permanent_epsilon covers that and the two roundings of the
+///    bound, so B = ε·P̂ ≥ γ_N·perm(|X|) in the rounding model.
+///  * Underflow: the filter only computed `computed` when every spatial column
+///    maximum lay in [2^-100, 2^100] (a NaN otherwise: nothing here). Then an
+///    entry is at most D·2^200, and each of the at most K!·(c(K) + K(D+2)) <
+///    2^19 operations (filter's or ours) that lands below 2^-1022 loses less
+///    than 2^-1022 (FTZ, DAZ or gradual), later multiplied by at most the
+///    K − 1 other entries of its monomial (≤ D·2^(100K)): in total less than
+///    2^(19 − 1022 + 3 + 100K) < 2^(100K − 900), the floor added to B.
+///  So |computed| > B proves sign(computed) = sign(det). Tested against GMP
+///  on every family of test_predicates_vs_gmp.cpp and on points near spheres.
+template <class Recipe, int D>
+std::optional<Sign> permanent_filter(const Point_refs<D, Recipe::arity>& p, double computed) {
+  constexpr int K = Recipe::size;
+  if (std::isnan(computed)) return std::nullopt;
+  auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+  for (auto& row : m)
+    for (double& x : row) x = std::fabs(x);
+  constexpr int factors = Recipe::spatial_columns == K ? error_bounds::orientation_factors(D)
+                                                       : error_bounds::side_of_sphere_factors(D);
+  constexpr double epsilon = error_bounds::permanent_epsilon(factors);
+  constexpr double floor = error_bounds::power_of_two(100 * K - 900);
+  const double bound = epsilon * permanent<double, K>(m) + floor;
+  if (computed > bound) return Recipe::sign_adjust;
+  if (computed < -bound) return -Recipe::sign_adjust;
+  return std::nullopt;
+}
+
+/// Whether the interval stage is worth trying on this thread for one recipe.
+/// After the permanent stage it decides few of the calls that reach it on
+/// some inputs (points on a sphere: most calls go on to the exact stage)
+/// and nearly all on others; its cost, two to four times the permanent
+/// stage's, pays only when it decides often. So it is tried in windows of
+/// 64 calls; a window in which it decided fewer than one in eight makes the
+/// next 960 calls skip it (then it is tried again). Skipping a stage never
+/// changes an answer, only its cost.
+class Interval_gate {
+ public:
+  bool open() {
+    if (skip_ == 0) return true;
+    --skip_;
+    return false;
+  }
+  void record(bool decided) {
+    decided_ += decided ? 1u : 0u;
+    if (++tried_ < window) return;
+    if (decided_ * 8 < window) skip_ = skipped;
+    tried_ = decided_ = 0;
+  }
+
+ private:
+  static constexpr std::uint32_t window = 64, skipped = 960;
+  std::uint32_t tried_ = 0, decided_ = 0, skip_ = 0;
+};
+
+template <class Recipe>
+Interval_gate& interval_gate() {
+  thread_local Interval_gate gate;
+  return gate;
+}
+
+/// Stage 2b: the same determinant in interval arithmetic (no domain limits).
 template <class Recipe, int D>
 std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
   const auto m = Recipe::template matrix<Interval>(
@@ -171,6 +246,29 @@ std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordi
   return std::nullopt;
 }
 
+/// Whether every coordinate is an integer of magnitude at most 2^20.
+template <class Recipe, int D>
+bool small_integer_coordinates(const Point_refs<D, Recipe::arity>& p) {
+  for (int i = 0; i < Recipe::arity; ++i)
+    for (int j = 0; j < D; ++j) {
+      const double x = (*p[static_cast<std::size_t>(i)])[j];
+      if (!(std::fabs(x) <= 0x1p20) || x != std::nearbyint(x)) return false;
+    }
+  return true;
+}
+
+/// Whether 128-bit integers hold every value the expansion forms for any
+/// input of integers of magnitude at most 2^20: spatial entries below 2^21,
+/// lifted ones below D·2^42, so (as in exact's bound) K!·Π_j M_j < 2^125.
+template <class Recipe, int D>
+constexpr bool small_integers_fit_128() {
+  constexpr int K = Recipe::size;
+  constexpr int lifted_bits = 42 + static_cast<int>(std::bit_width(static_cast<unsigned>(D)));
+  return static_cast<int>(std::bit_width(static_cast<unsigned>(factorial_int(K)))) + 21 * Recipe::spatial_columns +
+             lifted_bits * (K - Recipe::spatial_columns) <=
+         125;
+}
+
 /// Stage 3: the same determinant over exact integers: 128-bit integers when a
 /// bound proves they cannot overflow (exactly degenerate inputs are mostly small
 /// integers: lattices, cospherical integer points), then integers as wide as
@@ -183,10 +281,23 @@ std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordi
 /// Inputs of at most 40 bits keep the entries themselves (differences, sums of
 /// D squares) below 2^90; the determinant path is taken when
 /// log2(K!) + Σ_j bits(M_j) ≤ 125.
+/// `integers`: small_integer_coordinates(p), when the caller knows it.
 template <class Recipe, int D>
-Sign exact(const Point_refs<D, Recipe::arity>& p) {
+Sign exact(const Point_refs<D, Recipe::arity>& p, bool integers) {
   constexpr int N = Recipe::arity * D;
   constexpr int K = Recipe::size;
+  // Integer inputs (lattices, cospherical integer points: every sphere test
+  // an exact zero) skip the common scale and the bit count: the bound holds
+  // for all of them. (Converted through 64 bits: a double to __int128 is a
+  // library call.)
+  if constexpr (small_integers_fit_128<Recipe, D>()) {
+    if (integers) {
+      const auto m = Recipe::template matrix<Int128>([&](int i, int j) {
+        return static_cast<Int128>(static_cast<std::int64_t>((*p[static_cast<std::size_t>(i)])[j]));
+      });
+      return Recipe::sign_adjust * sign_of(determinant<Int128, K>(m));
+    }
+  }
   const auto scale = common_scale_of<Recipe, D>(p);
   const int coordinate_bits = scale.max_bits();
   if (coordinate_bits <= 40) {
@@ -217,6 +328,10 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
   Recipe::fill(w.m, [&](int i, int j) -> const Exact_integer& { return w.integers[i * D + j]; });
   return Recipe::sign_adjust * static_cast<Sign>(determinant_sign_in_place<K>(w.m, w.minor));
 }
+template <class Recipe, int D>
+Sign exact(const Point_refs<D, Recipe::arity>& p) {
+  return exact<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
+}
 
 /// Stage 1b, for small integer inputs (lattices, grids: every tie exact),
 /// also after a common power-of-two scale (a lattice of spacing 2^-6 is one
@@ -236,21 +351,13 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 /// so the result is exactly ±0, the right answer.) The product is formed in
 /// double: each rounding is relative 2^-52 at most, far inside the margin
 /// (the test asks 2^52 where 2^53 would do).
+/// `integers`: small_integer_coordinates(p) (integers already, a lattice as
+/// given: no scale to take out; tested first, because frexp and ldexp on
+/// every coordinate cost more than the rest of the stage: grid 10^5, a
+/// fifth of the run).
 template <class Recipe, int D>
-std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
+std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p, bool integers) {
   constexpr int K = Recipe::size;
-  // Integers already (a lattice as given): no scale to take out. This test
-  // first, because frexp and ldexp on every coordinate cost more than the
-  // rest of the stage (grid 10^5: a fifth of the run).
-  bool integers = true;
-  for (int i = 0; i < Recipe::arity && integers; ++i)
-    for (int j = 0; j < D; ++j) {
-      const double x = (*p[static_cast<std::size_t>(i)])[j];
-      if (!(std::fabs(x) <= 0x1p20) || x != std::nearbyint(x)) {
-        integers = false;
-        break;
-      }
-    }
   // q: the exponent of the lowest set bit over all coordinates (x = odd · 2^e).
   int q = integers ? 0 : std::numeric_limits<int>::max();
   for (int i = 0; i < Recipe::arity && !integers; ++i)
@@ -288,6 +395,10 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   const double det = determinant<double, K>(m);
   return Recipe::sign_adjust * sign_of(det);
 }
+template <class Recipe, int D>
+std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
+  return exact_in_double<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
+}
 
 /// The stages after an undecided filter, under a guard of the floating-point
 /// environment (they assume round-to-nearest and gradual underflow). Out of
@@ -296,6 +407,7 @@ template <class Recipe, int D>
 [[gnu::noinline]] Sign after_filter(const Point_refs<D, Recipe::arity>& p, double computed) {
   const Fp_environment_guard guard;
   auto& stats = Recipe::stats();
+  const double unscaled = computed;  // the permanent stage's, on the points as given
   if (std::isnan(computed)) {
     if (auto s = filter_scaled<Recipe, D>(p, &computed)) {
       count(stats.filter);
@@ -307,21 +419,30 @@ template <class Recipe, int D>
   // cannot decide: go straight to the exact stage. Skipping a stage never
   // changes an answer, only its cost.
   Slow_path_counts& slow = slow_path_counts();
-  if (auto s = exact_in_double<Recipe, D>(p)) {
+  const bool integers = small_integer_coordinates<Recipe, D>(p);
+  if (auto s = exact_in_double<Recipe, D>(p, integers)) {
     count(stats.exact);  // an exact answer, if a cheap one
     ++slow.exact;
     return *s;
   }
   if (computed != 0) {
-    if (auto s = interval<Recipe, D>(p)) {
-      count(stats.interval);
-      ++slow.interval;
+    if (auto s = permanent_filter<Recipe, D>(p, unscaled)) {
+      count(stats.permanent);
       return *s;
+    }
+    if (Interval_gate& gate = interval_gate<Recipe>(); gate.open()) {
+      const auto s = interval<Recipe, D>(p);
+      gate.record(s.has_value());
+      if (s) {
+        count(stats.interval);
+        ++slow.interval;
+        return *s;
+      }
     }
   }
   count(stats.exact);
   ++slow.exact;
-  return exact<Recipe, D>(p);
+  return exact<Recipe, D>(p, integers);
 }
 
 /// The cascade, counting which stage decided. Exact in any floating-point

@@ -1,4 +1,4 @@
-// Per-stage counters: how often the filter, the interval stage, the exact stage
+// Per-stage counters: how often the filter, the permanent filter, the interval stage, the exact stage
 // and the symbolic perturbation decided. Compiled out unless the build defines
 // DEWALL_PREDICATE_STATS (CMake option DEWALL_PREDICATE_STATS); the relaxed
 // atomic increments cost a few percent on the hot path, so release builds skip them.
@@ -11,10 +11,10 @@
 namespace dewall::kernel {
 
 struct Predicate_stats {
-  std::atomic<std::uint64_t> filter{0}, interval{0}, exact{0}, perturbed{0};
+  std::atomic<std::uint64_t> filter{0}, permanent{0}, interval{0}, exact{0}, perturbed{0};
 
-  std::uint64_t calls() const { return filter + interval + exact; }
-  void reset() { filter = interval = exact = perturbed = 0; }
+  std::uint64_t calls() const { return filter + permanent + interval + exact; }
+  void reset() { filter = permanent = interval = exact = perturbed = 0; }
 };
 
 /// Counters indexed by dimension (0 and 1 unused).
