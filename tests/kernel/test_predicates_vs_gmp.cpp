@@ -344,7 +344,7 @@ TEMPLATE_TEST_CASE_SIG("exact in double: lattices scaled by 2^s are decided, as 
       orientation_zero += *orientation == ZERO;
       const auto sphere = stages::exact_in_double<Side_of_sphere_recipe<D>, D>(sphere_refs);
       REQUIRE(sphere.has_value());
-      CHECK(*sphere == dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]));
+      CHECK(static_cast<int>(*sphere) == static_cast<int>(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1])));
       sphere_zero += *sphere == ZERO;
     }
     // The ties were decided too.
@@ -503,4 +503,57 @@ TEMPLATE_TEST_CASE_SIG("exact stage: integer coordinates up to 2^20 and beyond, 
     zeros += sphere == 0;
   }
   CHECK(zeros > 0);  // the cospherical sets reached the path with exact zeros
+}
+
+TEST_CASE("interval gate: after restart_interval_gates, a batch's slow-path counts do not depend on the thread's past",
+          "[predicates]") {
+  // Engine::automatic's budget charges a search by the interval and exact
+  // evaluations of its thread; the gate that skips the interval stage after a
+  // run of failures would make that charge depend on earlier calls on the
+  // thread (other tasks'), and the hand-over on the number of threads.
+  Rng rng(dewall::test::test_seed(0x6a7e));
+  std::normal_distribution<double> normal;
+  using Call = std::array<Point<3>, 5>;
+  // Exactly cospherical full-precision doubles, sign flips and permutations of
+  // one (a, b, c): no stage before the exact one decides them, so they close the gate.
+  std::vector<Call> closing(4000);
+  for (auto& call : closing) {
+    const std::array<double, 3> abc{normal(rng), normal(rng), normal(rng)};
+    for (auto& p : call) {
+      std::array<double, 3> x = abc;
+      std::shuffle(x.begin(), x.end(), rng);
+      for (double& v : x)
+        if (rng() & 1) v = -v;
+      p.x = x;
+    }
+  }
+  // Points near a sphere: some need the interval stage, and it decides some of them.
+  std::vector<Call> batch(3000);
+  for (auto& call : batch) {
+    Point<3> centre;
+    for (int j = 0; j < 3; ++j) centre.x[static_cast<std::size_t>(j)] = normal(rng);
+    for (auto& p : call) {
+      double norm = 0;
+      for (int j = 0; j < 3; ++j) {
+        p.x[static_cast<std::size_t>(j)] = centre[j] + 0x1p-12 * normal(rng);
+        norm += p[j] * p[j];
+      }
+      for (int j = 0; j < 3; ++j) p.x[static_cast<std::size_t>(j)] /= std::sqrt(norm);
+    }
+  }
+  const auto run = [](const std::vector<Call>& calls) {
+    const Slow_path_counts before = slow_path_counts();
+    for (const auto& p : calls) {
+      const Sphere_points<3> refs{&p[0], &p[1], &p[2], &p[3], &p[4]};
+      (void)side_of_oriented_sphere_d<3>(refs);
+    }
+    const Slow_path_counts& after = slow_path_counts();
+    return std::array<std::uint64_t, 2>{after.interval - before.interval, after.exact - before.exact};
+  };
+  restart_interval_gates();
+  const auto fresh = run(batch);
+  CHECK(fresh[0] > 0);  // the interval stage decides some of the batch: skipping it would show
+  (void)run(closing);
+  restart_interval_gates();
+  CHECK(run(batch) == fresh);
 }

@@ -100,6 +100,7 @@ class Search_budget {
   /// thread are charged from here.
   void begin_search() {
     ++searches_;
+    kernel::restart_interval_gates();  // (the charge then depends on this search alone)
     mark_ = kernel::slow_path_counts();
   }
 

@@ -180,10 +180,15 @@ std::optional<Sign> permanent_filter(const Point_refs<D, Recipe::arity>& p, doub
 /// stage's, pays only when it decides often. So it is tried in windows of
 /// 64 calls; a window in which it decided fewer than one in eight makes the
 /// next 960 calls skip it (then it is tried again). Skipping a stage never
-/// changes an answer, only its cost.
+/// changes an answer, only its cost. restart_interval_gates()
+/// (predicate_stats.hpp) sends every gate of the thread back to its start.
 class Interval_gate {
  public:
   bool open() {
+    if (const std::uint32_t epoch = slow_path_counts().gate_epoch; epoch != epoch_) {
+      tried_ = decided_ = skip_ = 0;
+      epoch_ = epoch;
+    }
     if (skip_ == 0) return true;
     --skip_;
     return false;
@@ -197,7 +202,7 @@ class Interval_gate {
 
  private:
   static constexpr std::uint32_t window = 64, skipped = 960;
-  std::uint32_t tried_ = 0, decided_ = 0, skip_ = 0;
+  std::uint32_t tried_ = 0, decided_ = 0, skip_ = 0, epoch_ = 0;
 };
 
 template <class Recipe>

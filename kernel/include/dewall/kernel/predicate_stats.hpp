@@ -42,12 +42,24 @@ inline constexpr bool predicate_stats_enabled =
 /// (dewall/detail/handover_rule.hpp).
 struct Slow_path_counts {
   std::uint64_t interval = 0, exact = 0;
+  /// Advanced by restart_interval_gates: a gate that last saw another epoch
+  /// starts afresh (filtered_predicate.hpp, Interval_gate).
+  std::uint32_t gate_epoch = 0;
 };
 
 inline Slow_path_counts& slow_path_counts() {
   thread_local Slow_path_counts counts;
   return counts;
 }
+
+/// Makes every interval gate of this thread start afresh. Which stage decides
+/// a call, and so what it counts above, depends on its gate's state, which
+/// depends on every call the thread made before; Engine::automatic's budget
+/// restarts the gates at each search, so that a search's charge is a function
+/// of the search alone, not of which tasks the thread ran before it: the
+/// hand-over, and with it the output, stays the same for every number of
+/// threads.
+inline void restart_interval_gates() { ++slow_path_counts().gate_epoch; }
 
 inline void count(std::atomic<std::uint64_t>& counter) {
   if constexpr (predicate_stats_enabled) counter.fetch_add(1, std::memory_order_relaxed);
