@@ -84,6 +84,26 @@ Static_filter_d<D> static_filter_of(const std::vector<Point<D>>& points, bool wi
   return Static_filter_d<D>(lo, hi);
 }
 
+/// D + 2 points as the predicates take them: the first D + 1 as a simplex
+/// (for the GMP references) and as an orientation's references, all D + 2
+/// as a sphere test's (the query last).
+template <int D>
+struct Call_points {
+  std::array<Point<D>, D + 1> simplex;
+  Orientation_points<D> orientation_refs;
+  Sphere_points<D> sphere_refs;
+  explicit Call_points(const std::vector<Point<D>>& points) {
+    for (int i = 0; i <= D + 1; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (i <= D) {
+        simplex[k] = points[k];
+        orientation_refs[k] = &points[k];
+      }
+      sphere_refs[k] = &points[k];
+    }
+  }
+};
+
 /// The permanent stage (filtered_predicate.hpp) as the cascade runs it: on
 /// the filter's own double determinant, under a guard of the environment.
 template <class Recipe, int D>
@@ -327,16 +347,8 @@ TEMPLATE_TEST_CASE_SIG("exact in double: lattices scaled by 2^s are decided, as 
           points[D].x[static_cast<std::size_t>(j)] = points[0][j] + points[1][j] - points[2][j];
       for (auto& p : points)
         for (int j = 0; j < D; ++j) p.x[static_cast<std::size_t>(j)] = std::ldexp(p[j], s);
-      std::array<Point<D>, D + 1> simplex;
-      Orientation_points<D> orientation_refs;
-      Sphere_points<D> sphere_refs;
-      for (int i = 0; i <= D + 1; ++i) {
-        if (i <= D) {
-          simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
-          orientation_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-        }
-        sphere_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-      }
+      const Call_points<D> call(points);
+      const auto& [simplex, orientation_refs, sphere_refs] = call;
       INFO(dewall::test::format_points<D>(points));
       const auto orientation = stages::exact_in_double<Orientation_recipe<D>, D>(orientation_refs);
       REQUIRE(orientation.has_value());
@@ -387,16 +399,8 @@ TEMPLATE_TEST_CASE_SIG("permanent filter and interval gate: points near a sphere
                 " on\n" + dewall::test::format_points<D>(points);
   };
   const auto run = [&](const std::vector<Point<D>>& points) {
-    std::array<Point<D>, D + 1> simplex;
-    Sphere_points<D> sphere_refs;
-    Orientation_points<D> orientation_refs;
-    for (int i = 0; i <= D + 1; ++i) {
-      if (i <= D) {
-        simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
-        orientation_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-      }
-      sphere_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    }
+    const Call_points<D> call(points);
+    const auto& [simplex, orientation_refs, sphere_refs] = call;
     const int sphere = dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]);
     const auto permanent = permanent_stage<Side_of_sphere_recipe<D>, D>(sphere_refs);
     check("sphere permanent filter", sphere, permanent, points);
@@ -486,16 +490,8 @@ TEMPLATE_TEST_CASE_SIG("exact stage: integer coordinates up to 2^20 and beyond, 
       points = dewall::test::lattice_points<D>(rng, D + 2, -limit, limit);
       for (int j = 0; j < D; ++j) points[0].x[static_cast<std::size_t>(j)] = c % 4 == 1 ? double(limit) : double(-limit);
     }
-    std::array<Point<D>, D + 1> simplex;
-    Sphere_points<D> sphere_refs;
-    Orientation_points<D> orientation_refs;
-    for (int i = 0; i <= D + 1; ++i) {
-      if (i <= D) {
-        simplex[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)];
-        orientation_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-      }
-      sphere_refs[static_cast<std::size_t>(i)] = &points[static_cast<std::size_t>(i)];
-    }
+    const Call_points<D> call(points);
+    const auto& [simplex, orientation_refs, sphere_refs] = call;
     INFO(dewall::test::format_points<D>(points));
     const int sphere = dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]);
     CHECK(side_of_oriented_sphere_d_exact<D>(sphere_refs) == sphere);

@@ -164,15 +164,14 @@ constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
 }
 
 /// The most distinct points Engine::automatic leaves to the incremental
-/// construction alone, without walls: one region's size, and when collected
-/// with the default region size at least largest_automatic_whole_input (a
-/// user who sets Options::region_points asks for regions; streaming, which
-/// is for memory, keeps its small regions). Fixed by n and the options,
-/// never by the number of threads.
+/// construction alone, without walls: largest_automatic_whole_input when
+/// collected with the default region size (larger than any default region),
+/// else one region's size (a user who sets Options::region_points asks for
+/// regions; streaming, which is for memory, keeps its small regions). Fixed
+/// by n and the options, never by the number of threads.
 constexpr std::size_t automatic_whole_limit(const Options& o, std::size_t n) {
-  const std::size_t region = region_points_for(o, n);
-  if (o.region_points || o.stream) return region;
-  return region > largest_automatic_whole_input ? region : largest_automatic_whole_input;
+  static_assert(largest_default_region < largest_automatic_whole_input);
+  return o.region_points || o.stream ? region_points_for(o, n) : largest_automatic_whole_input;
 }
 
 /// Counters for the paper's Table 1, filled by triangulate.

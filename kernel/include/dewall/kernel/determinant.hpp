@@ -64,8 +64,9 @@ template <int Begin, int End, class F>
 
 /// The minors of the last `Top` rows of `a` (Top ≤ K), each stored at its column mask, by the
 /// shared-minor expansion above; determinant() is the case Top = K. Every loop is unrolled at
-/// compile time, so masks, signs and indices are constants.
-template <int Top, class T, int K>
+/// compile time, so masks, signs and indices are constants. `Signed` false: every sign +, the
+/// permanents of the same submatrices, in the same order (permanent()).
+template <int Top, class T, int K, bool Signed = true>
 [[gnu::always_inline]] inline void lower_minors(const Matrix<T, K>& a, std::array<T, (1 << K)>& minor) {
   static_assert(K >= 1 && K <= 8 && Top >= 1 && Top <= K);
   constexpr const auto& table = detail::minor_masks<K>;
@@ -78,7 +79,7 @@ template <int Top, class T, int K>
       T sum = row[lowest] * minor[mask & ~(1u << lowest)];
       detail::static_for<lowest + 1, K>([&](auto j) {
         if constexpr ((mask & (1u << j)) != 0) {
-          constexpr bool negate = std::popcount(mask & ((1u << j) - 1)) % 2 == 1;
+          constexpr bool negate = Signed && std::popcount(mask & ((1u << j) - 1)) % 2 == 1;
           if constexpr (negate) sum -= row[j] * minor[mask & ~(1u << j)];
           else sum += row[j] * minor[mask & ~(1u << j)];
         }
@@ -97,21 +98,8 @@ template <class T, int K>
   if constexpr (K == 1) {
     return a[0][0];
   } else {
-    constexpr const auto& table = detail::minor_masks<K>;
     std::array<T, (1 << K)> minor;
-    detail::static_for<0, K>([&](auto j) { minor[std::size_t{1} << j] = a[K - 1][j]; });
-    detail::static_for<2, K + 1>([&](auto r) {
-      const auto& row = a[static_cast<std::size_t>(K - r)];
-      detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
-        constexpr unsigned mask = table.masks[t];
-        constexpr int lowest = std::countr_zero(mask);
-        T sum = row[lowest] * minor[mask & ~(1u << lowest)];
-        detail::static_for<lowest + 1, K>([&](auto j) {
-          if constexpr ((mask & (1u << j)) != 0) sum += row[j] * minor[mask & ~(1u << j)];
-        });
-        minor[mask] = sum;
-      });
-    });
+    lower_minors<K, T, K, false>(a, minor);
     return minor[(1u << K) - 1];
   }
 }
