@@ -101,8 +101,16 @@ TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring ce
       CHECK(distance == 1);
     }
   };
-  check(std::integral_constant<int, 2>{}, 3);
+  // 2D's table: odd and even paddings to 16 levels, and partial 4-level chunks.
+  for (int bits = 1; bits <= 7; ++bits) check(std::integral_constant<int, 2>{}, bits);
   check(std::integral_constant<int, 3>{}, 2);
+  check(std::integral_constant<int, 3>{}, 3);
+  // 3D's interleaving by masks against bit by bit, at every 16-bit value.
+  for (std::uint32_t v = 0; v < (1u << 16); ++v) {
+    std::uint64_t spread = 0;
+    for (int b = 0; b < 16; ++b) spread |= std::uint64_t{(v >> b) & 1u} << (3 * b);
+    if (dewall::detail::spread_bits_3(v) != spread) FAIL("spread_bits_3(" << v << ")");
+  }
   check(std::integral_constant<int, 4>{}, 2);
 }
 
@@ -259,6 +267,40 @@ void check_insert_more(const std::vector<dewall::kernel::Point_d<D>>& points) {
 }
 
 }  // namespace
+
+TEST_CASE("incremental: 2D fans of every size glue as CGAL's cells", "[incremental]") {
+  // A wheel: m points on a circle, then its centre (a fan of m cells: above
+  // 32 the directed table glues it, below the fan scan), then points inside.
+  std::mt19937_64 rng(37);
+  for (const std::size_t m : {5, 31, 32, 33, 40, 126, 200}) {
+    std::vector<dewall::kernel::Point_d<2>> points;
+    for (std::size_t k = 0; k < m; ++k) {
+      const double angle = 2 * 3.141592653589793 * static_cast<double>(k) / static_cast<double>(m);
+      points.push_back({{std::cos(angle), std::sin(angle)}});
+    }
+    points.push_back({{0.0, 0.0}});
+    for (const auto& p : dewall::test::uniform<2>(30, rng)) points.push_back({{0.5 * p[0] - 0.25, 0.5 * p[1] - 0.25}});
+    const auto coords = [&](std::size_t k) -> const std::array<double, 2>& { return points[k].x; };
+    const auto box = dewall::detail::bounding_box<2>(points.size(), coords);
+    Incremental_delaunay<2> dt;
+    dt.check_each_insertion = true;
+    REQUIRE(dt.build(m, coords, [](std::size_t k) { return k; }, &box));
+    const std::size_t created = dt.statistics().created_cells;
+    dt.insert_more(1, [&](std::size_t) -> const auto& { return points[m].x; }, [&](std::size_t) { return m; });
+    CHECK(dt.statistics().created_cells - created == m);  // the centre's fan: one cell per polygon edge
+    dt.insert_more(30, [&](std::size_t k) -> const auto& { return points[m + 1 + k].x; },
+                   [&](std::size_t k) { return m + 1 + k; });
+    dewall::test::Simplex_set<2> ours;
+    for (std::size_t c = 0; c < dt.slots(); ++c) {
+      if (dt.is_free(c) || dt.is_infinite(c)) continue;
+      std::array<std::uint32_t, 3> t;
+      for (int i = 0; i <= 2; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+      std::sort(t.begin(), t.end());
+      ours.insert(t);
+    }
+    CHECK(ours == dewall::test::cgal_delaunay<2>(points));
+  }
+}
 
 TEST_CASE("incremental: insert_more after build gives the triangulation of all the points", "[incremental]") {
   std::mt19937_64 rng(36);

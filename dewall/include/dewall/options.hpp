@@ -45,14 +45,12 @@ enum class Engine {
 
 /// The incremental construction Engine::automatic leaves an input to (one
 /// region's size, a spent search budget, 4D and up) in dimension D: the
-/// project's own where it is faster than CGAL's on one thread — in 3D on
-/// every class handed over (spheres, shells, lattices, tori, layers), above
-/// 3D on uniform points — and CGAL's in the plane, where what is handed over
-/// is mostly cocircular (points on a circle), on which ours is still slower.
-/// docs/engines.md has the measurements.
-constexpr Engine default_incremental_engine(int dimension) {
-  return dimension == 2 ? Engine::cgal : Engine::incremental;
-}
+/// project's own, faster than CGAL's on one thread on every class measured —
+/// in 3D on every class handed over (spheres, shells, lattices, tori,
+/// layers), in the plane on uniform points, clusters and points on a circle
+/// since its 2D fan gluing and Hilbert table (it was CGAL's there until then),
+/// above 3D on uniform points. docs/engines.md has the measurements.
+constexpr Engine default_incremental_engine(int /*dimension*/) { return Engine::incremental; }
 
 /// The incremental construction of the hybrid's regions: the project's own in
 /// every dimension, faster than CGAL's on what reaches the regions, which is
