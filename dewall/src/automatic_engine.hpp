@@ -5,7 +5,7 @@
 // behind each step):
 //  1. In 4D and up: the incremental construction alone (the walls and the
 //     regions' filter only add to it there).
-//  2. At most automatic_whole_limit distinct points (options.hpp: 524288
+//  2. At most automatic_whole_limit distinct points (options.hpp: 1048576
 //     collected with the default regions, else one region's worth): the
 //     incremental construction alone (below that the walls and regions cost
 //     more than they gain on one thread and on two).
