@@ -105,6 +105,18 @@ TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring ce
   for (int bits = 1; bits <= 7; ++bits) check(std::integral_constant<int, 2>{}, bits);
   check(std::integral_constant<int, 3>{}, 2);
   check(std::integral_constant<int, 3>{}, 3);
+  // 2D's table is Skilling's curve: every cell up to 2^8 per axis, random ones above.
+  std::mt19937_64 rng(38);
+  for (int bits = 1; bits <= 16; ++bits) {
+    const std::uint32_t side = 1u << bits;
+    for (std::uint32_t k = 0; k < (bits <= 8 ? side * side : 100000u); ++k) {
+      const std::array<std::uint32_t, 2> x =
+          bits <= 8 ? std::array<std::uint32_t, 2>{k % side, k / side}
+                    : std::array<std::uint32_t, 2>{static_cast<std::uint32_t>(rng()) % side, static_cast<std::uint32_t>(rng()) % side};
+      if (dewall::detail::hilbert_index<2>(x, bits) != dewall::detail::skilling_hilbert_index<2>(x, bits))
+        FAIL("bits " << bits << ", cell (" << x[0] << ", " << x[1] << ")");
+    }
+  }
   // 3D's interleaving by masks against bit by bit, at every 16-bit value.
   for (std::uint32_t v = 0; v < (1u << 16); ++v) {
     std::uint64_t spread = 0;
