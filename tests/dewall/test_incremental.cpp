@@ -23,6 +23,20 @@ namespace {
 using dewall::detail::Incremental_delaunay;
 using Point3 = dewall::kernel::Point_d<3>;
 
+/// The finite cells of a built triangulation as sorted input-index tuples.
+template <int D>
+dewall::test::Simplex_set<D> finite_cells(const Incremental_delaunay<D>& dt) {
+  dewall::test::Simplex_set<D> cells;
+  for (std::size_t c = 0; c < dt.slots(); ++c) {
+    if (dt.is_free(c) || dt.is_infinite(c)) continue;
+    std::array<std::uint32_t, D + 1> t;
+    for (int i = 0; i <= D; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
+    std::sort(t.begin(), t.end());
+    cells.insert(t);
+  }
+  return cells;
+}
+
 /// The engine's finite cells as sorted input-index tuples (duplicates
 /// removed first, first occurrence kept, as the library does).
 template <int D>
@@ -41,16 +55,10 @@ dewall::test::Simplex_set<D> incremental_delaunay(const std::vector<dewall::kern
     return out;
   CHECK(dt.is_valid());
   std::size_t finite = 0;
-  for (std::size_t c = 0; c < dt.slots(); ++c) {
-    if (dt.is_free(c) || dt.is_infinite(c)) continue;
-    ++finite;
-    std::array<std::uint32_t, D + 1> t;
-    for (int i = 0; i <= D; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
-    std::sort(t.begin(), t.end());
-    out.insert(t);
-  }
+  for (std::size_t c = 0; c < dt.slots(); ++c) finite += !dt.is_free(c) && !dt.is_infinite(c);
   CHECK(finite == dt.finite_cells());
-  CHECK(out.size() == finite);
+  out = finite_cells(dt);
+  CHECK(out.size() == finite);  // no cell twice
   return out;
 }
 
@@ -266,14 +274,7 @@ void check_insert_more(const std::vector<dewall::kernel::Point_d<D>>& points) {
   dt.insert_more(distinct.size() - second, [&](std::size_t k) -> const auto& { return coords(second + k); },
                  [&](std::size_t k) { return distinct[second + k]; });
   CHECK(dt.is_valid());
-  dewall::test::Simplex_set<D> ours;
-  for (std::size_t c = 0; c < dt.slots(); ++c) {
-    if (dt.is_free(c) || dt.is_infinite(c)) continue;
-    std::array<std::uint32_t, D + 1> t;
-    for (int i = 0; i <= D; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
-    std::sort(t.begin(), t.end());
-    ours.insert(t);
-  }
+  const auto ours = finite_cells(dt);
   CHECK(ours.size() == dt.finite_cells());
   CHECK(ours == dewall::test::cgal_delaunay<D>(points));
 }
@@ -302,15 +303,7 @@ TEST_CASE("incremental: 2D fans of every size glue as CGAL's cells", "[increment
     CHECK(dt.statistics().created_cells - created == m);  // the centre's fan: one cell per polygon edge
     dt.insert_more(30, [&](std::size_t k) -> const auto& { return points[m + 1 + k].x; },
                    [&](std::size_t k) { return m + 1 + k; });
-    dewall::test::Simplex_set<2> ours;
-    for (std::size_t c = 0; c < dt.slots(); ++c) {
-      if (dt.is_free(c) || dt.is_infinite(c)) continue;
-      std::array<std::uint32_t, 3> t;
-      for (int i = 0; i <= 2; ++i) t[static_cast<std::size_t>(i)] = dt.input_index(dt.cell(c)[static_cast<std::size_t>(i)]);
-      std::sort(t.begin(), t.end());
-      ours.insert(t);
-    }
-    CHECK(ours == dewall::test::cgal_delaunay<2>(points));
+    CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<2>(points));
   }
 }
 
