@@ -318,6 +318,56 @@ TEST_CASE("incremental: insert_more after build gives the triangulation of all t
   check_insert_more<4>(dewall::test::uniform<4>(150, rng));
 }
 
+TEST_CASE("incremental: on a small lattice the static filter decides exactly; off it, the cascade does", "[incremental]") {
+  std::mt19937_64 rng(38);
+  const auto distinct = [](auto points) {
+    std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
+    points.erase(std::unique(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x == b.x; }),
+                 points.end());
+    std::shuffle(points.begin(), points.end(), std::mt19937_64(7));
+    return points;
+  };
+  const auto check = [&]<int D>(const std::vector<dewall::kernel::Point_d<D>>& points, bool exact) {
+    INFO(points.size() << " points in " << D << "D, exact " << exact);
+    Incremental_delaunay<D> dt;
+    REQUIRE(dt.build(points));
+    CHECK(dt.static_filter_exact() == exact);
+    CHECK(dt.is_valid());
+    CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<D>(points));
+  };
+  using dewall::test::lattice;
+  using dewall::test::scaled;
+  check(lattice<3>(1000), true);                                // every sphere test ties
+  check(scaled<3>(lattice<3>(1000), 0x1p-30, 0.75), true);      // a lattice of unit 2^-30
+  check(scaled<3>(lattice<3>(1000), 0.1, 0), false);            // 0.1·k: no small binary unit
+  check(distinct(dewall::test::lattice_samples<3>(1500, 1000, rng)), false);  // extent 999: beyond the bound
+  check(distinct(dewall::test::lattice_samples<3>(1500, 12, rng)), true);
+  check(dewall::test::cospherical<3>(true), true);
+  check(lattice<2>(2500), true);
+  check(distinct(dewall::test::lattice_samples<2>(2000, 60, rng)), true);
+  check(dewall::test::cospherical<2>(true), true);
+
+  // Points off the lattice inserted later (insert_more): the filter stops deciding alone.
+  auto points = lattice<3>(512);  // {0 … 7}^3
+  std::uniform_int_distribution<int> cell(0, 6);
+  for (int k = 0; k < 40; ++k)
+    points.push_back({{cell(rng) + 0.5, cell(rng) + 0.5, static_cast<double>(cell(rng))}});
+  points = distinct(points);
+  std::stable_partition(points.begin(), points.end(), [](const auto& p) { return p[0] == std::floor(p[0]); });
+  const auto first = static_cast<std::size_t>(std::count_if(points.begin(), points.end(),
+                                                             [](const auto& p) { return p[0] == std::floor(p[0]); }));
+  const auto coords = [&](std::size_t k) -> const std::array<double, 3>& { return points[k].x; };
+  const auto box = dewall::detail::bounding_box<3>(points.size(), coords);
+  Incremental_delaunay<3> dt;
+  dt.check_each_insertion = true;
+  REQUIRE(dt.build(first, coords, [](std::size_t k) { return k; }, &box));
+  CHECK(dt.static_filter_exact());
+  dt.insert_more(points.size() - first, [&](std::size_t k) -> const auto& { return coords(first + k); },
+                 [&](std::size_t k) { return first + k; });
+  CHECK(!dt.static_filter_exact());
+  CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<3>(points));
+}
+
 TEST_CASE("incremental: too few points or a flat set build nothing", "[incremental]") {
   Incremental_delaunay<3> dt;
   const std::vector<Point3> three{{{0, 0, 0}}, {{1, 0, 0}}, {{0, 1, 0}}};

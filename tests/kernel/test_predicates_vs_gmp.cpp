@@ -553,3 +553,87 @@ TEST_CASE("interval gate: after restart_interval_gates, a batch's slow-path coun
   restart_interval_gates();
   CHECK(run(batch) == fresh);
 }
+
+TEST_CASE("lowest_bit_exponent: x = odd · 2^e gives e, at every exponent", "[predicates]") {
+  Rng rng(20261126);
+  CHECK(lowest_bit_exponent(0.0) == std::numeric_limits<int>::max());
+  CHECK(lowest_bit_exponent(-0.0) == std::numeric_limits<int>::max());
+  CHECK(lowest_bit_exponent(std::numeric_limits<double>::denorm_min()) == -1074);
+  CHECK(lowest_bit_exponent(std::numeric_limits<double>::max()) == 1023 - 52);
+  for (int e = -1074; e <= 1023 - 52; ++e) {
+    // odd significands of 1 to 53 bits, both signs, wherever the result is a double
+    const int bits = static_cast<int>(dewall::test::uniform_int(rng, 1, 53));
+    const auto odd = static_cast<double>((std::uint64_t{1} << (bits - 1)) | 1 | (rng() & ((std::uint64_t{1} << (bits - 1)) - 1)));
+    const double x = std::ldexp(rng() % 2 ? odd : -odd, e);
+    if (x == 0 || !std::isfinite(x) || std::ldexp(x, -e) != (x < 0 ? -odd : odd)) continue;  // not representable
+    INFO("x = " << odd << " · 2^" << e);
+    CHECK(lowest_bit_exponent(x) == e);
+  }
+}
+
+// The static filter made exact on a lattice (static_filter.hpp, "Exact
+// evaluation on a lattice"): on points whose coordinates are multiples of 2^s
+// in a box whose extent reaches the derivation's limit, it must decide every
+// call, the many exact zeros included, as GMP does; a larger box or a finer
+// unit must not be taken as exact.
+TEMPLATE_TEST_CASE_SIG("static filter on a lattice: exact up to its bound, as GMP decides them", "[gmp][predicates]",
+                       ((int D), D), 2, 3) {
+  const auto seed = dewall::test::test_seed(0x5ea71c + D);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  // Near the largest cube the bound admits: (D+1)!·E^D·D·E² < 2^53.
+  const long extent = D == 2 ? 5000 : 640;
+  const long half = extent / 2;
+  for (const int s : {-90, -20, 0, 13, 80}) {
+    INFO("unit 2^" << s);
+    std::array<double, D> lo, hi, too_far;
+    lo.fill(0);
+    hi.fill(std::ldexp(static_cast<double>(extent), s));
+    too_far.fill(std::ldexp(static_cast<double>(2 * extent), s));
+    const Static_filter_d<D> filter(lo, hi, s);
+    REQUIRE(filter.exact());
+    CHECK(!Static_filter_d<D>(lo, too_far, s).exact());
+    CHECK(!Static_filter_d<D>(lo, hi, s - 1).exact());
+    CHECK(!Static_filter_d<D>(lo, hi).exact());
+    int orientation_zero = 0, sphere_zero = 0;
+    for (int c = 0; c < 400; ++c) {
+      std::vector<Point<D>> points;
+      switch (c % 4) {
+        case 0:  // on one sphere around the box's centre: the sphere test is zero
+          points = dewall::test::cospherical_integer_points<D>(rng, D + 2, half - 8, 8);
+          break;
+        case 1:  // on one hyperplane: the orientation and the sphere test are zero
+          points = dewall::test::flat_integer_points<D>(rng, D + 2, D - 1, D == 2 ? 40 : 10);
+          break;
+        case 2:  // spread over the whole box, two opposite corners among them: the largest entries
+          points = dewall::test::lattice_points<D>(rng, D + 2, -half, half);
+          points[0].x.fill(static_cast<double>(-half));
+          points[D + 1 - c / 4 % 2].x.fill(static_cast<double>(half));
+          break;
+        default:  // a small cluster: ties of every kind
+          points = dewall::test::lattice_points<D>(rng, D + 2, -2, 2);
+          for (auto& p : points) p.x[0] += static_cast<double>(dewall::test::uniform_int(rng, -half + 2, half - 2));
+      }
+      if (points.size() < D + 2) continue;
+      for (auto& p : points)
+        for (int j = 0; j < D; ++j) {
+          p.x[static_cast<std::size_t>(j)] = std::ldexp(p[j] + static_cast<double>(half), s);
+          REQUIRE((p[j] >= lo[static_cast<std::size_t>(j)] && p[j] <= hi[static_cast<std::size_t>(j)]));
+        }
+      const Call_points<D> call(points);
+      const auto& [simplex, orientation_refs, sphere_refs] = call;
+      INFO(dewall::test::format_points<D>(points));
+      const auto orientation = filter.orientation(orientation_refs);
+      REQUIRE(orientation.has_value());
+      CHECK(*orientation == dewall::test::gmp_orientation<D>(simplex));
+      orientation_zero += *orientation == ZERO;
+      const auto sphere = filter.side_of_oriented_sphere(sphere_refs);
+      REQUIRE(sphere.has_value());
+      CHECK(static_cast<int>(*sphere) ==
+            static_cast<int>(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1])));
+      sphere_zero += *sphere == ZERO;
+    }
+    CHECK(orientation_zero > 50);  // the ties were reached, and decided
+    CHECK(sphere_zero > 100);
+  }
+}

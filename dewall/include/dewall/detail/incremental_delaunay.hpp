@@ -112,8 +112,8 @@ class Incremental_delaunay {
     if (count < static_cast<std::size_t>(D + 1)) return false;
     const Box<D> box = bounding_box<D>(count, coordinates);
     std::vector<std::uint32_t> order = brio_order<D>(count, coordinates, box);
-    static_filter_ = filter_box ? kernel::Static_filter_d<D>(filter_box->lo, filter_box->hi)
-                                : kernel::Static_filter_d<D>(box.lo, box.hi);
+    const Box<D>& filter_bounds = filter_box ? *filter_box : box;
+    static_filter_ = kernel::Static_filter_d<D>(filter_bounds.lo, filter_bounds.hi, lattice_unit(count, coordinates));
     if (!start(coordinates, order)) return false;
     reserve(expected_cells(count));
     points_.resize(count);
@@ -136,6 +136,7 @@ class Incremental_delaunay {
   void insert_more(std::size_t count, Coordinates&& coordinates, Id&& id) {
     if (count == 0) return;
     const std::vector<std::uint32_t> order = brio_order<D>(count, coordinates);
+    if (static_filter_.exact()) static_filter_.admit_lattice(lattice_unit(count, coordinates));
     const std::size_t first = points_.size();
     points_.resize(first + count);
     input_.resize(first + count);
@@ -170,6 +171,9 @@ class Incremental_delaunay {
   /// Tests: run is_valid() after every insertion (O(n) each), throwing
   /// std::logic_error at the first failure.
   bool check_each_insertion = false;
+  /// Tests: whether the static filter decides every predicate exactly (the
+  /// points lie on a small lattice: kernel/static_filter.hpp).
+  bool static_filter_exact() const { return static_filter_.exact(); }
   /// Tests: glue every star through the ridge hash table (in 2D and 3D only
   /// cavities of 127 boundary vertices or more take it otherwise).
   bool ridge_table_only = false;
@@ -261,8 +265,35 @@ class Incremental_delaunay {
   /// Whether q lies inside the perturbed sphere of finite cell c.
   bool sphere_holds(std::size_t c, const Point& q) const {
     const auto refs = sphere_points(c, q);
-    if (const auto s = static_filter_.side_of_oriented_sphere(refs)) return *s == kernel::POSITIVE;
+    if (const auto s = static_filter_.side_of_oriented_sphere(refs)) {
+      if (*s != kernel::ZERO) return *s == kernel::POSITIVE;
+      // An exact zero (the filter is exact on this lattice): the
+      // perturbation's orientations, through the same exact filter.
+      return kernel::perturbed_side_of_sphere<D>(
+                 refs,
+                 [&](const kernel::Orientation_points<D>& o) {
+                   if (const auto sign = static_filter_.orientation(o)) return *sign;
+                   return kernel::orientation_d<D>(o);
+                 },
+                 [](const Point& a, const Point& b) {
+                   return kernel::compare_lexicographically(a, b) == kernel::SMALLER;
+                 }) == kernel::ON_POSITIVE_SIDE;
+    }
     return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
+  }
+
+  /// The exponent of the coarsest power of two of which every coordinate of
+  /// the `count` points is a multiple (INT_MIN where the static filter is
+  /// not offered: no use scanning).
+  template <class Coordinates>
+  static int lattice_unit(std::size_t count, Coordinates&& coordinates) {
+    if constexpr (!kernel::Static_filter_d<D>::available) return INT_MIN;
+    int unit = INT_MAX;
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto& x = coordinates(k);
+      for (int j = 0; j < D; ++j) unit = std::min(unit, kernel::lowest_bit_exponent(x[j]));
+    }
+    return unit;
   }
 
   /// Whether cell c is in conflict with q: destroyed when q is inserted.
