@@ -51,12 +51,17 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <new>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
 #include <vector>
+#ifdef __linux__
+#include <sys/mman.h>
+#include <unistd.h>
+#endif
 
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face.hpp"
@@ -123,7 +128,24 @@ class Incremental_delaunay {
       input_[k] = static_cast<Index>(id(order[k]));
     }
     std::vector<std::uint32_t>().swap(order);
-    insert_vertices(D + 1, count);
+    // Cells per point range from 6.5 (volume) to 20 (samples of a torus) in
+    // 3D, and more above: the first sixteenth of the BRIO order (its first
+    // rounds: a random sample) predicts the count, so that the arrays grow
+    // once, early, instead of doubling late (each doubling copies the cells
+    // onto fresh pages: measured 13 % of a 10^6-point torus's time).
+    const std::size_t sample = std::max<std::size_t>(count / 16, D + 1);
+    insert_vertices(D + 1, sample);
+    if (sample < count) {
+      const double per_point = static_cast<double>(cells_.size()) / static_cast<double>(sample);
+      const auto predicted = static_cast<std::size_t>(per_point * 1.5 * static_cast<double>(count));
+      if (predicted > cells_.capacity()) {
+        try {
+          reserve(predicted);
+        } catch (const std::bad_alloc&) {  // more than the system grants at once: grow as needed
+        }
+      }
+    }
+    insert_vertices(sample, count);
     return true;
   }
 
@@ -199,6 +221,21 @@ class Incremental_delaunay {
 
   /// Cell slots, free ones included: cells are 0 … slots() − 1.
   std::size_t slots() const { return cells_.size(); }
+  /// Gives the memory of cell slots below `slot` back to the system (whole
+  /// pages only). For a caller that reads the cells once, in slot order, into
+  /// a list of its own, so that the list and the cells are never both whole
+  /// in memory. Afterwards only slots ≥ `slot` may be read (the object is
+  /// otherwise unusable); the released records read as zeros.
+  void release_slots_below(std::size_t slot) {
+#ifdef __linux__
+    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    const auto begin = (reinterpret_cast<std::uintptr_t>(cells_.data()) + page - 1) / page * page;
+    const auto end = reinterpret_cast<std::uintptr_t>(cells_.data() + std::min(slot, cells_.size())) / page * page;
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+#else
+    (void)slot;
+#endif
+  }
   bool is_free(std::size_t c) const { return cells_[c].v[0] == free_slot; }
   bool is_infinite(std::size_t c) const { return infinite_position(c) <= D; }
   /// The position of the infinite vertex in cell c, or D + 1 when it is finite.
