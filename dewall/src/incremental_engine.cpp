@@ -56,16 +56,9 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
       distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
       [&](std::size_t k) { return distinct[k]; });
   DEWALL_ASSERT(built);  // the points span E^D: checked above
-  // The cells are released behind the writer, a step at a time: a caller
-  // collecting the list (the CLI: 16 bytes a tetrahedron) then never holds
-  // it and the cells (32 bytes a slot) whole at once (measured at 10^6
-  // uniform points: peak 425 → see docs/engines.md).
-  constexpr std::size_t release_step = std::size_t{1} << 18;
   Block_writer<D> writer(output, dt.finite_cells());
-  for (std::size_t c = 0; c < dt.slots(); ++c) {
+  for (std::size_t c = 0; c < dt.slots(); ++c)
     if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(input_vertices(dt, c));
-    if ((c + 1) % release_step == 0) dt.release_slots_below(c + 1);
-  }
   return incremental_statistics(Engine::incremental, points.size(), distinct.size(), writer.finish());
 }
 

@@ -14,8 +14,6 @@
 #include <type_traits>
 #include <vector>
 
-#include <unistd.h>
-
 #include "dewall/detail/incremental_delaunay.hpp"
 #include "dewall/detail/spatial_order.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
@@ -370,32 +368,6 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly; of
                  [&](std::size_t k) { return first + k; });
   CHECK(!dt.static_filter_exact());
   CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<3>(points));
-}
-
-TEST_CASE("incremental: release_slots_below frees the slots read, and only those", "[incremental]") {
-  std::mt19937_64 rng(39);
-  Incremental_delaunay<3> dt;
-  REQUIRE(dt.build(dewall::test::uniform<3>(3000, rng)));
-  const std::size_t slots = dt.slots();
-  REQUIRE(slots * 32 > 16 * static_cast<std::size_t>(sysconf(_SC_PAGESIZE)));  // many pages
-  std::vector<Incremental_delaunay<3>::Cell> before(slots);
-  for (std::size_t c = 0; c < slots; ++c) before[c] = dt.cell(c);
-  // Read in slot order, releasing behind (as triangulate_incremental does,
-  // at an odd step): every slot read is intact.
-  std::size_t intact = 0;
-  for (std::size_t c = 0; c < slots; ++c) {
-    intact += dt.cell(c) == before[c];
-    if ((c + 1) % 37 == 0) dt.release_slots_below(c + 1);
-  }
-  CHECK(intact == slots);
-  // The memory went back: whole pages below the last release read as zeros
-  // (all but at most a page's worth of slots at either end).
-  std::size_t zero = 0;
-  const std::size_t released = slots / 37 * 37;
-  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
-  for (std::size_t c = 0; c < released; ++c) zero += dt.cell(c) == Incremental_delaunay<3>::Cell{};
-  CHECK(zero + 2 * page / 32 >= released);
-  CHECK(zero > 0);
 }
 
 TEST_CASE("incremental: too few points or a flat set build nothing", "[incremental]") {

@@ -58,10 +58,6 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
-#ifdef __linux__
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
 
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face.hpp"
@@ -130,17 +126,22 @@ class Incremental_delaunay {
     std::vector<std::uint32_t>().swap(order);
     // Cells per point range from 6.5 (volume) to 20 (samples of a torus) in
     // 3D, and more above: the first sixteenth of the BRIO order (its first
-    // rounds: a random sample) predicts the count, so that the arrays grow
-    // once, early, instead of doubling late (each doubling copies the cells
-    // onto fresh pages: measured 13 % of a 10^6-point torus's time).
+    // rounds: a random sample) predicts the count. When the arrays would
+    // overflow (the count a little above the prediction), they are enlarged
+    // now, with room to spare (the count per point still grows on surfaces:
+    // on a 10^6-point torus an eighth more than the sample's was too little),
+    // so that they grow once,
+    // early, instead of doubling late (each doubling copies the cells onto
+    // fresh pages: 13 % of a 10^6-point torus's time). Volume data stays in
+    // the first reservation (reallocating it anyway cost up to 25 %).
     const std::size_t sample = std::max<std::size_t>(count / 16, D + 1);
     insert_vertices(D + 1, sample);
     if (sample < count) {
       const double per_point = static_cast<double>(cells_.size()) / static_cast<double>(sample);
-      const auto predicted = static_cast<std::size_t>(per_point * 1.5 * static_cast<double>(count));
-      if (predicted > cells_.capacity()) {
+      const double predicted = per_point * static_cast<double>(count);
+      if (predicted * 1.125 > static_cast<double>(cells_.capacity())) {
         try {
-          reserve(predicted);
+          reserve(static_cast<std::size_t>(predicted * 1.5));
         } catch (const std::bad_alloc&) {  // more than the system grants at once: grow as needed
         }
       }
@@ -221,21 +222,6 @@ class Incremental_delaunay {
 
   /// Cell slots, free ones included: cells are 0 … slots() − 1.
   std::size_t slots() const { return cells_.size(); }
-  /// Gives the memory of cell slots below `slot` back to the system (whole
-  /// pages only). For a caller that reads the cells once, in slot order, into
-  /// a list of its own, so that the list and the cells are never both whole
-  /// in memory. Afterwards only slots ≥ `slot` may be read (the object is
-  /// otherwise unusable); the released records read as zeros.
-  void release_slots_below(std::size_t slot) {
-#ifdef __linux__
-    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-    const auto begin = (reinterpret_cast<std::uintptr_t>(cells_.data()) + page - 1) / page * page;
-    const auto end = reinterpret_cast<std::uintptr_t>(cells_.data() + std::min(slot, cells_.size())) / page * page;
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
-#else
-    (void)slot;
-#endif
-  }
   bool is_free(std::size_t c) const { return cells_[c].v[0] == free_slot; }
   bool is_infinite(std::size_t c) const { return infinite_position(c) <= D; }
   /// The position of the infinite vertex in cell c, or D + 1 when it is finite.
@@ -304,19 +290,23 @@ class Incremental_delaunay {
     const auto refs = sphere_points(c, q);
     if (const auto s = static_filter_.side_of_oriented_sphere(refs)) {
       if (*s != kernel::ZERO) return *s == kernel::POSITIVE;
-      // An exact zero (the filter is exact on this lattice): the
-      // perturbation's orientations, through the same exact filter.
-      return kernel::perturbed_side_of_sphere<D>(
-                 refs,
-                 [&](const kernel::Orientation_points<D>& o) {
-                   if (const auto sign = static_filter_.orientation(o)) return *sign;
-                   return kernel::orientation_d<D>(o);
-                 },
-                 [](const Point& a, const Point& b) {
-                   return kernel::compare_lexicographically(a, b) == kernel::SMALLER;
-                 }) == kernel::ON_POSITIVE_SIDE;
+      return exact_zero_perturbed(refs);
     }
     return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
+  }
+  /// sphere_holds for an exact zero of the static filter (exact on this
+  /// lattice): the perturbation's orientations, through the same filter.
+  /// Out of line: inlined, it slowed the cavity search on inputs that never
+  /// tie.
+  [[gnu::noinline]] bool exact_zero_perturbed(const kernel::Sphere_points<D>& refs) const {
+    return kernel::perturbed_side_of_sphere<D>(
+               refs,
+               [&](const kernel::Orientation_points<D>& o) {
+                 if (const auto sign = static_filter_.orientation(o)) return *sign;
+                 return kernel::orientation_d<D>(o);
+               },
+               [](const Point& a, const Point& b) { return kernel::compare_lexicographically(a, b) == kernel::SMALLER; }) ==
+           kernel::ON_POSITIVE_SIDE;
   }
 
   /// The exponent of the coarsest power of two of which every coordinate of
