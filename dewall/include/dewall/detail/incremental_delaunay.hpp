@@ -127,13 +127,13 @@ class Incremental_delaunay {
     // Cells per point range from 6.5 (volume) to 20 (samples of a torus) in
     // 3D, and more above: the first sixteenth of the BRIO order (its first
     // rounds: a random sample) predicts the count. When the arrays would
-    // overflow (the count a little above the prediction), they are enlarged
+    // overflow (the count an eighth above the prediction), they are enlarged
     // now, with room to spare (the count per point still grows on surfaces:
     // on a 10^6-point torus an eighth more than the sample's was too little),
-    // so that they grow once,
-    // early, instead of doubling late (each doubling copies the cells onto
-    // fresh pages: 13 % of a 10^6-point torus's time). Volume data stays in
-    // the first reservation (reallocating it anyway cost up to 25 %).
+    // so that they grow once, early, instead of doubling late (each doubling
+    // copies the cells onto fresh pages: 13 % of a 10^6-point torus's time).
+    // Volume data stays in the first reservation (reallocating it anyway
+    // measured up to 25 % slower).
     const std::size_t sample = std::max<std::size_t>(count / 16, D + 1);
     insert_vertices(D + 1, sample);
     if (sample < count) {
