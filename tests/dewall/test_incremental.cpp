@@ -368,6 +368,23 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly; of
                  [&](std::size_t k) { return first + k; });
   CHECK(!dt.static_filter_exact());
   CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<3>(points));
+
+  // Points on a coarser lattice inserted later keep it exact: the half-integer
+  // points of {0, 0.5, …, 3.5}^3 first, then its integer points.
+  auto halves = dewall::test::scaled<3>(lattice<3>(512), 0.5, 0);
+  const auto integral = [](const auto& p) { return p[0] == std::floor(p[0]) && p[1] == std::floor(p[1]) && p[2] == std::floor(p[2]); };
+  std::stable_partition(halves.begin(), halves.end(), [&](const auto& p) { return !integral(p); });
+  const auto on_halves = static_cast<std::size_t>(std::count_if(halves.begin(), halves.end(), [&](const auto& p) { return !integral(p); }));
+  const auto half_coords = [&](std::size_t k) -> const std::array<double, 3>& { return halves[k].x; };
+  const auto half_box = dewall::detail::bounding_box<3>(halves.size(), half_coords);
+  Incremental_delaunay<3> coarser;
+  REQUIRE(coarser.build(on_halves, half_coords, [](std::size_t k) { return k; }, &half_box));
+  CHECK(coarser.static_filter_exact());
+  coarser.insert_more(halves.size() - on_halves, [&](std::size_t k) -> const auto& { return half_coords(on_halves + k); },
+                      [&](std::size_t k) { return on_halves + k; });
+  CHECK(coarser.static_filter_exact());
+  CHECK(coarser.is_valid());
+  CHECK(finite_cells(coarser) == dewall::test::cgal_delaunay<3>(halves));
 }
 
 TEST_CASE("incremental: too few points or a flat set build nothing", "[incremental]") {

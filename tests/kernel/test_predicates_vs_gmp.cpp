@@ -595,6 +595,14 @@ TEMPLATE_TEST_CASE_SIG("static filter on a lattice: exact up to its bound, as GM
     CHECK(!Static_filter_d<D>(lo, too_far, s).exact());
     CHECK(!Static_filter_d<D>(lo, hi, s - 1).exact());
     CHECK(!Static_filter_d<D>(lo, hi).exact());
+    // The bound itself, to the unit: P = (D+1)!·E^D·D·E² < 2^53 holds at
+    // E = 659 (3D; 5234 in 2D) and fails one unit further.
+    const long largest = D == 2 ? 5234 : 659;
+    std::array<double, D> at_bound, beyond;
+    at_bound.fill(std::ldexp(static_cast<double>(largest), s));
+    beyond.fill(std::ldexp(static_cast<double>(largest + 1), s));
+    CHECK(Static_filter_d<D>(lo, at_bound, s).exact());
+    CHECK(!Static_filter_d<D>(lo, beyond, s).exact());
     int orientation_zero = 0, sphere_zero = 0;
     for (int c = 0; c < 400; ++c) {
       std::vector<Point<D>> points;

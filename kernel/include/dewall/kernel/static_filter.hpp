@@ -40,7 +40,7 @@
 //  * a spatial entry is a difference of two multiples of u, so a multiple of
 //    u of magnitude ≤ S_j (computed exactly when representable: the
 //    difference of two doubles is); a lifted entry a multiple of u², ≤ the
-//    lifted S. Each S_j is ≥ u (a non-zero extent between multiples of u).
+//    lifted S. (S_j ≥ u for the points' own box; a factor < 1 counts as 1.)
 //  * determinant.hpp forms each minor of the last r rows as a sum, over the
 //    columns j of its set, of an entry times a smaller minor. By induction
 //    every value computed (entry, product, partial sum, minor) is exact: the
