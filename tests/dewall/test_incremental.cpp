@@ -355,9 +355,9 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly; of
   for (int k = 0; k < 40; ++k)
     points.push_back({{cell(rng) + 0.5, cell(rng) + 0.5, static_cast<double>(cell(rng))}});
   points = distinct(points);
-  std::stable_partition(points.begin(), points.end(), [](const auto& p) { return p[0] == std::floor(p[0]); });
-  const auto first = static_cast<std::size_t>(std::count_if(points.begin(), points.end(),
-                                                             [](const auto& p) { return p[0] == std::floor(p[0]); }));
+  const auto first = static_cast<std::size_t>(
+      std::stable_partition(points.begin(), points.end(), [](const auto& p) { return p[0] == std::floor(p[0]); }) -
+      points.begin());
   const auto coords = [&](std::size_t k) -> const std::array<double, 3>& { return points[k].x; };
   const auto box = dewall::detail::bounding_box<3>(points.size(), coords);
   Incremental_delaunay<3> dt;
@@ -373,8 +373,8 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly; of
   // points of {0, 0.5, …, 3.5}^3 first, then its integer points.
   auto halves = dewall::test::scaled<3>(lattice<3>(512), 0.5, 0);
   const auto integral = [](const auto& p) { return p[0] == std::floor(p[0]) && p[1] == std::floor(p[1]) && p[2] == std::floor(p[2]); };
-  std::stable_partition(halves.begin(), halves.end(), [&](const auto& p) { return !integral(p); });
-  const auto on_halves = static_cast<std::size_t>(std::count_if(halves.begin(), halves.end(), [&](const auto& p) { return !integral(p); }));
+  const auto on_halves = static_cast<std::size_t>(
+      std::stable_partition(halves.begin(), halves.end(), [&](const auto& p) { return !integral(p); }) - halves.begin());
   const auto half_coords = [&](std::size_t k) -> const std::array<double, 3>& { return halves[k].x; };
   const auto half_box = dewall::detail::bounding_box<3>(halves.size(), half_coords);
   Incremental_delaunay<3> coarser;
