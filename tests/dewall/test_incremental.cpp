@@ -11,8 +11,11 @@
 #include <cmath>
 #include <random>
 #include <set>
+#include <span>
 #include <type_traits>
 #include <vector>
+
+#include <tbb/task_arena.h>
 
 #include "dewall/detail/incremental_delaunay.hpp"
 #include "dewall/detail/spatial_order.hpp"
@@ -397,4 +400,76 @@ TEST_CASE("incremental: too few points or a flat set build nothing", "[increment
   flat.push_back({{0.5, 0.5, 1e-300}});  // one point off the plane makes it full-dimensional
   CHECK(dt.build(flat));
   CHECK(dt.is_valid());
+}
+
+namespace {
+
+/// Points on a torus (ring radius 1, tube 0.3): a surface whose hole the
+/// zones' planes cut, and many hull points.
+std::vector<Point3> torus_points(std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+  std::vector<Point3> p(n);
+  for (auto& q : p) {
+    const double a = angle(rng), b = angle(rng);
+    q.x = {(1 + 0.3 * std::cos(b)) * std::cos(a), (1 + 0.3 * std::cos(b)) * std::sin(a), 0.3 * std::sin(b)};
+  }
+  return p;
+}
+
+/// Builds `points` (distinct) with zoned insertion from `threshold` points on,
+/// in an arena of `threads` threads.
+template <int D>
+void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::Point_d<D>>& points,
+                 std::size_t threshold, int threads, double slots_scale = 1) {
+  dt.zoned_insertion_threshold = threshold;
+  dt.zone_slots_scale = slots_scale;
+  tbb::task_arena arena(threads);
+  arena.execute([&] { REQUIRE(dt.build(std::span<const dewall::kernel::Point_d<D>>(points))); });
+}
+
+/// Zoned insertion on one and on two threads: CGAL's cells, valid after
+/// every round and serial insertion, and the same cells in the same slots
+/// (the output order) on both. Returns the points the zones inserted.
+template <int D>
+std::size_t check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, double slots_scale = 1) {
+  std::set<std::array<double, D>> seen;
+  std::vector<dewall::kernel::Point_d<D>> points;
+  for (const auto& p : given)
+    if (seen.insert(p.x).second) points.push_back(p);
+  Incremental_delaunay<D> one, two;
+  one.check_each_insertion = true;
+  build_zoned(one, points, 64, 1, slots_scale);
+  build_zoned(two, points, 64, 2, slots_scale);
+  CHECK(finite_cells(one) == dewall::test::cgal_delaunay<D>(points));
+  CHECK(two.is_valid());
+  REQUIRE(one.slots() == two.slots());
+  bool same_slots = true;
+  for (std::size_t c = 0; c < one.slots(); ++c)
+    same_slots = same_slots && one.is_free(c) == two.is_free(c) && (one.is_free(c) || one.cell(c) == two.cell(c));
+  CHECK(same_slots);
+  CHECK(one.finite_cells() == two.finite_cells());
+  CHECK(one.statistics().zoned_points == two.statistics().zoned_points);
+  return one.statistics().zoned_points;
+}
+
+}  // namespace
+
+TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on one and two threads", "[incremental]") {
+  std::mt19937_64 rng(41);
+  // Much of a uniform set goes through the zones (on so few points many
+  // cavities meet the cut); the rest waits and is inserted one by one.
+  const auto uniform3 = dewall::test::uniform<3>(3000, rng);
+  CHECK(check_zoned<3>(uniform3) > 3000 / 4);
+  CHECK(check_zoned<2>(dewall::test::uniform<2>(3000, rng)) > 3000 / 8);
+  // Ties everywhere, duplicates, cospherical and flat sets, a surface, extreme scales.
+  check_zoned<3>(dewall::test::lattice<3>(2000));
+  check_zoned<2>(dewall::test::lattice_samples<2>(3000, 6, rng));
+  check_zoned<3>(dewall::test::lattice_samples<3>(2000, 4, rng));
+  check_zoned<3>(dewall::test::planes<3>(2000, 3, rng));
+  check_zoned<3>(torus_points(2000, rng));
+  check_zoned<3>(dewall::test::scaled<3>(dewall::test::lattice_samples<3>(1500, 4, rng), 0x1p-600, 0));
+  check_zoned<4>(dewall::test::uniform<4>(1200, rng));
+  check_zoned<4>(dewall::test::lattice<4>(1000));
+  // Zones that run out of slots leave their points to the next round.
+  CHECK(check_zoned<3>(uniform3, 0.25) < check_zoned<3>(uniform3));
 }

@@ -48,6 +48,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <iterator>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
@@ -58,6 +59,8 @@
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face.hpp"
@@ -78,6 +81,15 @@ struct Incremental_statistics {
   std::size_t conflict_cells = 0; // cells destroyed, summed over insertions
   std::size_t created_cells = 0;  // cells made, summed over insertions
   std::size_t ridge_table_stars = 0;  // stars glued through the ridge hash table
+  std::size_t zoned_points = 0;   // points a zone inserted (insert_in_zones)
+  Incremental_statistics& operator+=(const Incremental_statistics& o) {
+    walk_steps += o.walk_steps;
+    conflict_cells += o.conflict_cells;
+    created_cells += o.created_cells;
+    ridge_table_stars += o.ridge_table_stars;
+    zoned_points += o.zoned_points;
+    return *this;
+  }
 };
 
 /// The Delaunay triangulation of distinct points, built incrementally.
@@ -146,7 +158,8 @@ class Incremental_delaunay {
         }
       }
     }
-    insert_vertices(sample, count);
+    if (count - sample >= zoned_insertion_threshold) insert_in_zones(sample, count, box);
+    else insert_vertices(sample, count);
     return true;
   }
 
@@ -197,6 +210,13 @@ class Incremental_delaunay {
   /// Tests: whether the static filter decides every predicate exactly (the
   /// points lie on a small lattice: kernel/static_filter.hpp).
   bool static_filter_exact() const { return static_filter_.exact(); }
+  /// Points after build()'s sample from which they are inserted in zones
+  /// (insert_in_zones: in parallel, the same cells and slots for any number
+  /// of threads); tests lower it.
+  std::size_t zoned_insertion_threshold = std::size_t{1} << 16;
+  /// Tests: scales the new slots each zone gets (below 1 zones run out of
+  /// slots early, and their points wait for the next round).
+  double zone_slots_scale = 1;
   /// Tests: glue every star through the ridge hash table (in 2D and 3D only
   /// cavities of 127 boundary vertices or more take it otherwise).
   bool ridge_table_only = false;
@@ -207,10 +227,10 @@ class Incremental_delaunay {
   /// assumes it inside, is off for the call.
   std::vector<std::size_t> cavity(const Point& q) {
     const auto filter = std::exchange(static_filter_, kernel::Static_filter_d<D>());
-    find_cavity(q, infinite);
-    clear_marks();
+    find_cavity<false>(serial_, q, infinite);
+    clear_marks(serial_);
     static_filter_ = filter;
-    std::vector<std::size_t> cells = cavity_;
+    std::vector<std::size_t> cells = serial_.cavity;
     std::sort(cells.begin(), cells.end());
     return cells;
   }
@@ -235,8 +255,8 @@ class Incremental_delaunay {
   std::size_t neighbor(std::size_t c, int i) const { return cells_[c].n[i] >> facet_bits; }
   /// The caller's id of vertex v (finite).
   Index input_index(Index v) const { return input_[v]; }
-  std::size_t finite_cells() const { return finite_cells_; }
-  const Incremental_statistics& statistics() const { return stats_; }
+  std::size_t finite_cells() const { return finite_cells_ + static_cast<std::size_t>(serial_.finite_change); }
+  const Incremental_statistics& statistics() const { return serial_.stats; }
 
   /// Checks the data structure (tests): neighbours are
   /// mutual and share D vertices, finite cells are positively oriented.
@@ -257,6 +277,8 @@ class Incremental_delaunay {
   }
 
  private:
+  struct Worker;
+  static constexpr std::size_t no_cell = std::numeric_limits<std::size_t>::max();
   static constexpr std::uint32_t facet_mask = (1u << facet_bits) - 1;
   // The largest reference stays below the ridge table's two sentinels
   // (none = 2^32 − 1, taken = 2^32 − 2).
@@ -286,7 +308,7 @@ class Incremental_delaunay {
   }
 
   /// Whether q lies inside the perturbed sphere of finite cell c.
-  bool sphere_holds(std::size_t c, const Point& q) const {
+  [[gnu::always_inline]] bool sphere_holds(std::size_t c, const Point& q) const {
     const auto refs = sphere_points(c, q);
     if (const auto s = static_filter_.side_of_oriented_sphere(refs)) {
       if (*s != kernel::ZERO) return *s == kernel::POSITIVE;
@@ -382,11 +404,12 @@ class Incremental_delaunay {
         cells_[ca].n[ia] = reference(cb, ib);
         cells_[cb].n[ib] = reference(ca, ia);
       }
-    free_.clear();
-    new_cells_.clear();  // start_of_cavity's candidates: none yet
-    stats_ = {};
+    serial_.free.clear();
+    serial_.new_cells.clear();  // start_of_cavity's candidates: none yet
+    serial_.stats = {};
+    serial_.finite_change = 0;
     finite_cells_ = 1;
-    last_ = 0;
+    serial_.last = 0;
     mark_.assign(cells_.size(), 0);
     return true;
   }
@@ -398,9 +421,12 @@ class Incremental_delaunay {
     return -1;
   }
 
-  /// Step 3a: a cell in conflict with q, by a visibility walk from last_.
-  std::size_t locate(const Point& q) {
-    std::size_t c = last_, previous = std::numeric_limits<std::size_t>::max();
+  /// Step 3a: a cell in conflict with q, by a visibility walk from w.last.
+  /// Zoned: no_cell when the walk would enter a cell with a vertex outside
+  /// w's zone (w.last has none, so no cell it reads is another zone's to change).
+  template <bool Zoned>
+  std::size_t locate(Worker& w, const Point& q) {
+    std::size_t c = w.last, previous = std::numeric_limits<std::size_t>::max();
     if (const int i = infinite_position(c); i <= D) c = neighbor(c, i);
     unsigned rotation = 0;
     for (;;) {
@@ -414,10 +440,15 @@ class Incremental_delaunay {
         const std::size_t next = neighbor(c, i);
         if (next == previous) continue;
         if (orientation(c, i, &q) == kernel::NEGATIVE) {
+          if constexpr (Zoned)
+            if (!owns(w, cells_[next].v[cells_[c].n[i] & facet_mask])) {
+              w.walk_failed = true;
+              return no_cell;
+            }
           previous = c;
           c = next;
           moved = true;
-          ++stats_.walk_steps;
+          ++w.stats.walk_steps;
           break;
         }
       }
@@ -430,11 +461,12 @@ class Incremental_delaunay {
   /// often holds a cell of its predecessor's star), else the walk's. The
   /// cavity is the same from any cell in it; a sphere test here saves
   /// several walk steps (docs/engines.md has the figures).
-  std::size_t start_of_cavity(const Point& q) {
-    const std::size_t tries = std::min<std::size_t>(new_cells_.size(), star_tries);
+  template <bool Zoned>
+  std::size_t start_of_cavity(Worker& w, const Point& q) {
+    const std::size_t tries = std::min<std::size_t>(w.new_cells.size(), star_tries);
     for (std::size_t k = 0; k < tries; ++k)
-      if (proven_in_conflict(new_cells_[k], q)) return new_cells_[k];
-    return locate(q);
+      if (proven_in_conflict(w.new_cells[k], q)) return w.new_cells[k];
+    return locate<Zoned>(w, q);
   }
 
   /// Whether the static filter alone proves cell c in conflict with q (false
@@ -456,16 +488,21 @@ class Incremental_delaunay {
     std::uint32_t outside;
   };
 
-  /// Steps 3a–b: cavity_ holds the cells in conflict with q, boundary_ the
+  /// Steps 3a–b: w.cavity holds the cells in conflict with q, w.boundary the
   /// facets around them with the new cells' vertices (q as vertex v).
-  void find_cavity(const Point& q, Index v) {
-    const std::size_t start_cell = start_of_cavity(q);
+  /// Zoned: false (the search stopped; clear_marks(w) undoes it) when a cell
+  /// in conflict has a vertex outside w's zone or the walk left the zone.
+  template <bool Zoned>
+  bool find_cavity(Worker& w, const Point& q, Index v) {
+    w.cavity.clear();
+    w.boundary.clear();
+    const std::size_t start_cell = start_of_cavity<Zoned>(w, q);
+    if constexpr (Zoned)
+      if (start_cell == no_cell) return false;
     DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
 
     // 3b. The cavity, breadth-first; mark_: in conflict or not (clear_marks resets both).
     constexpr std::uint8_t in = 1, out = 2;
-    cavity_.clear();
-    boundary_.clear();
     // The neighbours' marks and records, then the points of their vertices
     // across the shared facets, are the search's cache misses (measured on a
     // torus: most of find_cavity's time). So they are asked for a step ahead:
@@ -479,11 +516,11 @@ class Incremental_delaunay {
         __builtin_prefetch(&cells_[n]);
       }
     };
-    cavity_.push_back(start_cell);
+    w.cavity.push_back(start_cell);
     mark_[start_cell] = in;
     prefetch_neighbours(start_cell);
-    for (std::size_t k = 0; k < cavity_.size(); ++k) {
-      const std::size_t c = cavity_[k];
+    for (std::size_t k = 0; k < w.cavity.size(); ++k) {
+      const std::size_t c = w.cavity[k];
       for (int i = 0; i <= D; ++i) {
         const std::uint32_t ref = cells_[c].n[i];
         const Index far = cells_[ref >> facet_bits].v[ref & facet_mask];
@@ -495,8 +532,11 @@ class Incremental_delaunay {
         if (mark_[n] == in) continue;
         if (mark_[n] != out) {
           if (in_conflict(n, q)) {
+            // n shares a facet with c, whose vertices are all w's zone's: only its far vertex may not be.
+            if constexpr (Zoned)
+              if (!owns(w, cells_[n].v[ref & facet_mask])) return false;
             mark_[n] = in;
-            cavity_.push_back(n);
+            w.cavity.push_back(n);
             prefetch_neighbours(n);
             continue;
           }
@@ -505,48 +545,224 @@ class Incremental_delaunay {
         // Written in place: a facet built on the stack and copied is
         // stored in pieces and reloaded whole, a store-forwarding stall
         // (measured in 2D: the hottest instruction of the search).
-        Boundary_facet& f = boundary_.emplace_back();
+        Boundary_facet& f = w.boundary.emplace_back();
         f.vertices = cells_[c].v;
         f.vertices[i] = v;
         f.facet = i;
         f.outside = ref;
       }
     }
+    return true;
   }
 
-  /// Step 3 for vertices first … last − 1 (points_ holds them).
+  /// Step 3 for vertices first … last − 1 (points_ holds them), one by one.
   void insert_vertices(std::size_t first, std::size_t last) {
-    for (std::size_t k = first; k < last; ++k) {
-      insert(static_cast<Index>(k));
-      if (check_each_insertion && !is_valid())
-        throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(k));
-    }
+    for (std::size_t k = first; k < last; ++k) insert_serially(static_cast<Index>(k));
+  }
+  void insert_serially(Index v) {
+    insert<false>(serial_, v);
+    if (check_each_insertion && !is_valid())
+      throw std::logic_error("Incremental_delaunay: invalid after inserting vertex " + std::to_string(v));
   }
 
   /// Resets the marks find_cavity set: on the cavity's cells and on the cells
   /// outside its boundary, the only ones it marks (explicit clearing keeps the
   /// marks one byte per slot, a quarter of the epoch counters it replaces: the
   /// marks are one of the search's cache misses).
-  void clear_marks() {
-    for (const std::size_t c : cavity_) mark_[c] = 0;
-    for (const Boundary_facet& f : boundary_) mark_[f.outside >> facet_bits] = 0;
+  void clear_marks(const Worker& w) {
+    for (const std::size_t c : w.cavity) mark_[c] = 0;
+    for (const Boundary_facet& f : w.boundary) mark_[f.outside >> facet_bits] = 0;
   }
 
-  /// Step 3: inserts vertex v (points_[v]).
-  void insert(Index v) {
-    find_cavity(points_[v], v);
+  /// Zoned insertion: the zone of point p in the current round, by its side
+  /// of the cut (which zone does the work is no geometric decision: either
+  /// answer gives the same triangulation). Read from the coordinates, which
+  /// the predicates load anyway (a per-vertex zone array was a cache miss).
+  std::uint8_t zone_of(const Point& p) const { return p.x[cut_axis_] < cut_ ? 0 : 1; }
+  /// Zoned insertion: whether vertex v is in w's zone. The infinite vertex
+  /// is in every zone above 2D and in none in 2D (insert_in_zones says why).
+  bool owns(const Worker& w, Index v) const {
+    if (v == infinite) return D > 2;
+    return zone_of(points_[v]) == w.zone;
+  }
+
+  /// Step 3 for vertices first … last − 1 in rounds of two zones, each zone
+  /// inserted by its own task (in parallel when the arena has two threads).
+  ///
+  /// A round cuts space by a plane, at the median of its points' coordinate
+  /// along one axis (the box's longest first, another each round); every
+  /// vertex, old or new, is in the zone of its side. A zone inserts its
+  /// points in their order, each only when its walk and its cavity stay in
+  /// cells whose vertices are all the zone's; else the point waits for the
+  /// next round (the cavity's cells not yet changed). Why no two zones touch
+  /// the same data: a zone changes only cells with all D + 1 vertices its
+  /// own (the cavity), and the neighbour reference, mark and vertices of
+  /// cells sharing a facet with one, which have D ≥ 2 of its vertices, so
+  /// they are no other zone's cavity and share no facet with one; the walk
+  /// starts in the zone's own cells and stops before any other. So each
+  /// zone's work reads and writes only what no other zone changes in the
+  /// round, and its result (which points wait, which slots hold which
+  /// cells: its slots are fixed before the round) depends on the round's
+  /// start alone, not on the threads' timing: the cells, their slots and
+  /// the output order are the same for any number of threads. The
+  /// Delaunay triangulation (perturbed) is unique, so it is CGAL's in any
+  /// insertion order. Points outside the hull (infinite cells are no
+  /// zone's) and those still waiting after D rounds are inserted one by one.
+  /// Cf. hxt (Marot, Pellerin, Remacle 2019), which partitions along a
+  /// Hilbert curve and lets threads race; here the partition is by planes
+  /// and nothing races.
+  void insert_in_zones(std::size_t first, std::size_t last, const Box<D>& box) {
+    std::vector<Index> pending(last - first);
+    for (std::size_t k = first; k < last; ++k) pending[k - first] = static_cast<Index>(k);
+    // Cells per point so far: each zone's new slots are sized from it.
+    const double per_point = static_cast<double>(slots() - serial_.free.size()) / static_cast<double>(first);
+    std::array<int, D> axes;
+    for (int j = 0; j < D; ++j) axes[j] = j;
+    std::stable_sort(axes.begin(), axes.end(),
+                     [&](int a, int b) { return box.hi[a] - box.lo[a] > box.hi[b] - box.lo[b]; });
+    std::array<Worker, 2> workers;
+    for (int round = 0; round < D && pending.size() >= zoned_insertion_threshold / 16; ++round) {
+      const int axis = axes[round];
+      std::vector<double> along(pending.size());
+      for (std::size_t k = 0; k < pending.size(); ++k) along[k] = points_[pending[k]].x[axis];
+      const auto median = along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2);
+      std::nth_element(along.begin(), median, along.end());
+      const double cut = *median;
+      cut_axis_ = axis;
+      cut_ = cut;
+      std::array<std::vector<Index>, 2> points;
+      for (const Index v : pending) points[zone_of(points_[v])].push_back(v);
+      // Each zone's slots: free ones first (the end of the free list), then a new range.
+      std::size_t grown = slots();
+      for (std::size_t z = 0; z < 2; ++z) {
+        Worker& w = workers[z];
+        w.zone = static_cast<std::uint8_t>(z);
+        w.new_cells.clear();
+        w.deferred.clear();
+        w.out_of_slots = false;
+        // An eighth above the cells per point so far (a zone that runs out
+        // leaves its points to the next round).
+        const auto wanted = static_cast<std::size_t>(
+            zone_slots_scale * (per_point * 1.125 * static_cast<double>(points[z].size()) + 1024));
+        const std::size_t taken = std::min(wanted, serial_.free.size());
+        w.free.assign(serial_.free.end() - static_cast<std::ptrdiff_t>(taken), serial_.free.end());
+        serial_.free.resize(serial_.free.size() - taken);
+        w.next_slot = grown;
+        w.end_slot = grown += std::min(wanted - taken, max_slots - std::min(grown, max_slots));
+      }
+      reserve(grown);
+      cells_.resize(grown);
+      mark_.resize(grown, 0);
+      // Where the zones' walks start: for every hint_spacing-th point of a
+      // zone, the cell holding it now, when all its vertices are the zone's
+      // (found serially, by walking from one to the next: nothing changes
+      // yet). Within the round only the zone changes such a slot; so when
+      // not free it holds a cell of the zone's (usually near: a slot is
+      // reused by the cavity that freed it).
+      std::array<std::vector<std::size_t>, 2> hints;
+      for (std::size_t z = 0; z < 2; ++z)
+        for (std::size_t k = 0; k < points[z].size(); k += hint_spacing) {
+          const std::size_t c = locate<false>(serial_, points_[points[z][k]]);
+          bool own = !is_infinite(c);
+          if (own) serial_.last = c;
+          for (int i = 0; i <= D; ++i) own = own && owns(workers[z], cells_[c].v[i]);
+          hints[z].push_back(own ? c : no_cell);
+        }
+      tbb::parallel_for(std::size_t{0}, std::size_t{2}, [&](std::size_t z) {
+        const kernel::Fp_environment_guard guard;
+        insert_zone(workers[z], points[z], hints[z]);
+      });
+      // The zones' unused slots become free ones (a range ending the array is cut off).
+      for (std::size_t z = 2; z-- > 0;) {
+        Worker& w = workers[z];
+        if (w.end_slot == slots()) {
+          cells_.resize(w.next_slot);
+          mark_.resize(w.next_slot);
+        } else {
+          for (std::size_t s = w.next_slot; s < w.end_slot; ++s) {
+            cells_[s].v[0] = free_slot;
+            serial_.free.push_back(static_cast<Index>(s));
+          }
+        }
+      }
+      for (Worker& w : workers) {
+        serial_.free.insert(serial_.free.end(), w.free.begin(), w.free.end());
+        finite_cells_ += static_cast<std::size_t>(w.finite_change);
+        w.finite_change = 0;
+        serial_.stats += w.stats;
+        w.stats = {};
+        if (w.last != no_cell) serial_.last = w.last;  // alive: nothing ran after its zone
+      }
+      pending.clear();
+      std::merge(workers[0].deferred.begin(), workers[0].deferred.end(), workers[1].deferred.begin(),
+                 workers[1].deferred.end(), std::back_inserter(pending));
+      if (check_each_insertion && !is_valid())
+        throw std::logic_error("Incremental_delaunay: invalid after zoned round " + std::to_string(round));
+    }
+    serial_.new_cells.clear();  // the last serial insertion's: other zones may have reused their slots
+    for (const Index v : pending) insert_serially(v);
+  }
+
+  /// A zone's insertions in a round (insert_in_zones): each point from the
+  /// cell the zone made last; when that walk leaves the zone (after a jump
+  /// of the points' curve, or near the zone's edge), again from the hint of
+  /// the latest hinted point. Without the second try one failed walk left
+  /// the next ones to start far away, and on a torus every later point of
+  /// the zone waited. What still fails waits in w.deferred.
+  void insert_zone(Worker& w, const std::vector<Index>& points, const std::vector<std::size_t>& hints) {
+    w.last = no_cell;
+    std::size_t hint = no_cell;
+    for (std::size_t k = 0; k < points.size(); ++k) {
+      if (k % hint_spacing == 0) hint = hints[k / hint_spacing];
+      const Index v = points[k];
+      bool inserted = false;
+      if (!w.out_of_slots) {
+        w.walk_failed = false;
+        if (w.last != no_cell) inserted = insert<true>(w, v);
+        // A walk must start in a finite cell of the zone: the hint's slot may
+        // hold an infinite one now.
+        if (!inserted && (w.last == no_cell || w.walk_failed) && !w.out_of_slots && hint != no_cell &&
+            hint != w.last && !is_free(hint) && !is_infinite(hint)) {
+          const std::size_t from = w.last;
+          w.last = hint;
+          inserted = insert<true>(w, v);
+          if (!inserted && from != no_cell) w.last = from;
+        }
+      }
+      if (inserted) ++w.stats.zoned_points;
+      else w.deferred.push_back(v);
+    }
+  }
+  static constexpr std::size_t hint_spacing = 64;
+
+  /// Step 3: inserts vertex v (points_[v]). Zoned: false, having changed
+  /// nothing, when the cavity is not all w's zone's (find_cavity) or w's
+  /// slots would not hold the star.
+  template <bool Zoned>
+  bool insert(Worker& w, Index v) {
+    if (!find_cavity<Zoned>(w, points_[v], v)) {
+      clear_marks(w);
+      return false;
+    }
+    if constexpr (Zoned)
+      if (w.boundary.size() > w.cavity.size() + w.free.size() + (w.end_slot - w.next_slot)) {
+        clear_marks(w);
+        w.out_of_slots = true;
+        return false;
+      }
 
     // 3c. The star: slots of the cavity first, then free ones, then new ones.
-    stats_.conflict_cells += cavity_.size();
-    stats_.created_cells += boundary_.size();
-    for (const std::size_t c : cavity_)
-      if (!is_infinite(c)) --finite_cells_;
+    w.stats.conflict_cells += w.cavity.size();
+    w.stats.created_cells += w.boundary.size();
+    for (const std::size_t c : w.cavity)
+      if (!is_infinite(c)) --w.finite_change;
     std::size_t reused = 0;
-    new_cells_.clear();
-    for (const Boundary_facet& f : boundary_) {
+    w.new_cells.clear();
+    for (const Boundary_facet& f : w.boundary) {
       std::size_t s;
-      if (reused < cavity_.size()) s = cavity_[reused++];
-      else if (!free_.empty()) s = free_.back(), free_.pop_back();
+      if (reused < w.cavity.size()) s = w.cavity[reused++];
+      else if (!w.free.empty()) s = w.free.back(), w.free.pop_back();
+      else if constexpr (Zoned) s = w.next_slot++;
       else {
         s = cells_.size();
         if (s >= max_slots)
@@ -555,7 +771,7 @@ class Incremental_delaunay {
         cells_.emplace_back();
         mark_.push_back(0);
       }
-      new_cells_.push_back(static_cast<Index>(s));
+      w.new_cells.push_back(static_cast<Index>(s));
       cells_[s].v = f.vertices;  // its mark is 0: clear_marks reset the slot when it left a cavity
       cells_[s].n[f.facet] = f.outside;
       cells_[f.outside >> facet_bits].n[f.outside & facet_mask] = reference(s, f.facet);
@@ -563,31 +779,32 @@ class Incremental_delaunay {
       for (int i = 0; i <= D; ++i)
         if (f.vertices[i] == infinite) finite = false;
       if (finite) {
-        ++finite_cells_;
-        last_ = s;
+        ++w.finite_change;
+        w.last = s;
       }
     }
-    if (ridge_table_only || !glue_star_directed()) {
-      glue_star_by_ridges();
-      ++stats_.ridge_table_stars;
+    if (ridge_table_only || !glue_star_directed(w)) {
+      glue_star_by_ridges(w);
+      ++w.stats.ridge_table_stars;
     }
-    clear_marks();
-    for (; reused < cavity_.size(); ++reused) {
-      cells_[cavity_[reused]].v[0] = free_slot;
-      free_.push_back(static_cast<Index>(cavity_[reused]));
+    clear_marks(w);
+    for (; reused < w.cavity.size(); ++reused) {
+      cells_[w.cavity[reused]].v[0] = free_slot;
+      w.free.push_back(static_cast<Index>(w.cavity[reused]));
     }
+    return true;
   }
 
   /// Step 3c's gluing: each new cell's facets through the new point matched
   /// with the other new cell on them, by their other D − 1 vertices.
-  void glue_star_by_ridges() {
-    ridges_.begin(boundary_.size() * D / 2);  // each ridge parked once
-    for (std::size_t b = 0; b < boundary_.size(); ++b) {
-      const Boundary_facet& f = boundary_[b];
-      const std::size_t s = new_cells_[b];
+  void glue_star_by_ridges(Worker& w) {
+    w.ridges.begin(w.boundary.size() * D / 2);  // each ridge parked once
+    for (std::size_t b = 0; b < w.boundary.size(); ++b) {
+      const Boundary_facet& f = w.boundary[b];
+      const std::size_t s = w.new_cells[b];
       for (int i = 0; i <= D; ++i) {
         if (i == f.facet) continue;
-        if (const std::uint32_t partner = ridges_.match_or_park(ridge_key(f.vertices, f.facet, i), reference(s, i));
+        if (const std::uint32_t partner = w.ridges.match_or_park(ridge_key(f.vertices, f.facet, i), reference(s, i));
             partner != Ridge_table::none) {
           cells_[s].n[i] = partner;
           cells_[partner >> facet_bits].n[partner & facet_mask] = reference(s, i);
@@ -608,40 +825,40 @@ class Incremental_delaunay {
   /// entry read was written in this insertion). False, having glued nothing,
   /// above 3D and for cavities of star_table_side − 1 finite boundary
   /// vertices or more (number 0 is the infinite vertex's).
-  bool glue_star_directed() {
+  bool glue_star_directed(Worker& w) {
     if constexpr (D > 3) {
       return false;
     } else {
       if constexpr (D == 2)
-        if (boundary_.size() <= fan_scan_limit) {
-          glue_fan();
+        if (w.boundary.size() <= fan_scan_limit) {
+          glue_fan(w);
           return true;
         }
       // The boundary's vertices numbered through a small open-addressing
       // table (in cache, unlike an array over all vertices), stamped per insertion.
-      const std::uint32_t stamp = ++local_stamp_;
+      const std::uint32_t stamp = ++w.local_stamp;
       if (stamp == 0) {  // wrapped around: forget every old stamp
-        std::fill(local_.begin(), local_.end(), Local{});
-        local_stamp_ = 1;
-        return glue_star_directed();
+        std::fill(w.local.begin(), w.local.end(), Local{});
+        w.local_stamp = 1;
+        return glue_star_directed(w);
       }
       std::uint32_t m = 1;  // 0: the infinite vertex
-      auto local = [&](Index w) -> std::uint32_t {
-        if (w == infinite) return 0;
-        for (std::uint32_t i = (w * 0x9e3779b9u) >> (32 - local_bits);; i = (i + 1) & (local_table_size - 1)) {
-          Local& l = local_[i];
+      auto local = [&](Index x) -> std::uint32_t {
+        if (x == infinite) return 0;
+        for (std::uint32_t i = (x * 0x9e3779b9u) >> (32 - local_bits);; i = (i + 1) & (local_table_size - 1)) {
+          Local& l = w.local[i];
           if (l.stamp != stamp) {
-            l = {w, stamp, m};
+            l = {x, stamp, m};
             return m++;
           }
-          if (l.vertex == w) return l.number;
+          if (l.vertex == x) return l.number;
         }
       };
-      // keys_[b·D + e]: the directed key of new cell b's e-th facet through p
+      // w.keys[b·D + e]: the directed key of new cell b's e-th facet through p
       // (star_facets[facet][e]), and of its reverse.
-      keys_.resize(boundary_.size() * D);
-      for (std::size_t b = 0; b < boundary_.size(); ++b) {
-        const Boundary_facet& f = boundary_[b];
+      w.keys.resize(w.boundary.size() * D);
+      for (std::size_t b = 0; b < w.boundary.size(); ++b) {
+        const Boundary_facet& f = w.boundary[b];
         const auto& facets = star_facets[f.facet];
         // Each boundary vertex's number once per facet (each is in D − 1 of its keys).
         std::array<std::uint32_t, D + 1> number;
@@ -651,20 +868,20 @@ class Incremental_delaunay {
           const Star_facet& t = facets[e];
           if constexpr (D == 3) {
             const std::uint32_t x = number[t.a], y = number[t.b];
-            keys_[b * D + e] = {x * star_table_side + y, y * star_table_side + x};
+            w.keys[b * D + e] = {x * star_table_side + y, y * star_table_side + x};
           } else {
             const std::uint32_t x = number[t.a];
-            keys_[b * D + e] = {2 * x + t.b, 2 * x + (1 - t.b)};
+            w.keys[b * D + e] = {2 * x + t.b, 2 * x + (1 - t.b)};
           }
         }
       }
-      for (std::size_t b = 0; b < boundary_.size(); ++b) {
-        const auto& facets = star_facets[boundary_[b].facet];
-        for (int e = 0; e < D; ++e) star_table_[keys_[b * D + e][0]] = reference(new_cells_[b], facets[e].k);
+      for (std::size_t b = 0; b < w.boundary.size(); ++b) {
+        const auto& facets = star_facets[w.boundary[b].facet];
+        for (int e = 0; e < D; ++e) w.star_table[w.keys[b * D + e][0]] = reference(w.new_cells[b], facets[e].k);
       }
-      for (std::size_t b = 0; b < boundary_.size(); ++b) {
-        const auto& facets = star_facets[boundary_[b].facet];
-        for (int e = 0; e < D; ++e) cells_[new_cells_[b]].n[facets[e].k] = star_table_[keys_[b * D + e][1]];
+      for (std::size_t b = 0; b < w.boundary.size(); ++b) {
+        const auto& facets = star_facets[w.boundary[b].facet];
+        for (int e = 0; e < D; ++e) cells_[w.new_cells[b]].n[facets[e].k] = w.star_table[w.keys[b * D + e][1]];
       }
       return true;
     }
@@ -675,24 +892,24 @@ class Incremental_delaunay {
   /// new cell whose a is b. With the fan's few cells (6 on uniform points) a
   /// scan of their a's is faster than numbering the vertices through a hash
   /// table (measured: glue_star_directed was a tenth of a 2D run).
-  void glue_fan() {
+  void glue_fan(Worker& w) {
     constexpr int after[3] = {1, 2, 0}, before[3] = {2, 0, 1};  // positions f + 1, f + 2 (mod 3)
-    const std::size_t m = boundary_.size();
+    const std::size_t m = w.boundary.size();
     std::array<Index, fan_scan_limit> a_of;  // each new cell's a
-    for (std::size_t x = 0; x < m; ++x) a_of[x] = boundary_[x].vertices[after[boundary_[x].facet]];
+    for (std::size_t x = 0; x < m; ++x) a_of[x] = w.boundary[x].vertices[after[w.boundary[x].facet]];
     for (std::size_t x = 0; x < m; ++x) {
-      const int fx = boundary_[x].facet;
-      const Index b = boundary_[x].vertices[before[fx]];
+      const int fx = w.boundary[x].facet;
+      const Index b = w.boundary[x].vertices[before[fx]];
       // The boundary is a closed polygon: b is exactly one cell's a. A scan
       // of fixed length with a conditional move: an early exit's branch
       // mispredicted (measured: most of the gluing's time).
       std::size_t y = 0;
       for (std::size_t k = 0; k < m; ++k) y = a_of[k] == b ? k : y;
       DEWALL_ASSERT(a_of[y] == b);
-      const int fy = boundary_[y].facet;
+      const int fy = w.boundary[y].facet;
       // x's edge (b, p) is opposite x's a; y's edge (p, b) is opposite y's own b.
-      cells_[new_cells_[x]].n[after[fx]] = reference(new_cells_[y], before[fy]);
-      cells_[new_cells_[y]].n[before[fy]] = reference(new_cells_[x], after[fx]);
+      cells_[w.new_cells[x]].n[after[fx]] = reference(w.new_cells[y], before[fy]);
+      cells_[w.new_cells[y]].n[before[fy]] = reference(w.new_cells[x], after[fx]);
     }
   }
   static constexpr std::size_t fan_scan_limit = 32;
@@ -809,15 +1026,32 @@ class Incremental_delaunay {
     Cell v;
     std::array<std::uint32_t, D + 1> n;
   };
-  std::vector<Record> cells_;    // by slot
+  /// Allocates without initialising: a new slot is written whole before it
+  /// is read (its vertices, then each neighbour reference), so growing the
+  /// array does not clear it first (zoned insertion grows it by the zones'
+  /// ranges at once; their pages are then first touched by the zone's thread).
+  template <class T>
+  struct Uninitialised_allocator : std::allocator<T> {
+    template <class U>
+    struct rebind {
+      using other = Uninitialised_allocator<U>;
+    };
+    Uninitialised_allocator() = default;
+    template <class U>
+    Uninitialised_allocator(const Uninitialised_allocator<U>&) noexcept {}
+    template <class U>
+    void construct(U* p) noexcept {
+      ::new (static_cast<void*>(p)) U;
+    }
+    template <class U, class... Args>
+    void construct(U* p, Args&&... args) {
+      ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    }
+  };
+  std::vector<Record, Uninitialised_allocator<Record>> cells_;  // by slot
   std::vector<std::uint8_t> mark_;  // 0, or find_cavity's in / out, by slot
-  std::vector<Index> free_;      // free slots
   std::size_t finite_cells_ = 0;
-  std::size_t last_ = 0;         // a finite cell made last: the next walk starts there
-  std::vector<std::size_t> cavity_;
-  std::vector<Boundary_facet> boundary_;
-  Ridge_table ridges_;
-  std::vector<Index> new_cells_;  // the slot of each boundary facet's new cell
+
   // glue_star_directed: the boundary vertices' numbers, the facets' directed
   // keys (and their reverses), the table by directed key.
   static constexpr std::size_t star_tries = 64;  // start_of_cavity's cap (stars grow fast above 3D)
@@ -828,12 +1062,35 @@ class Incremental_delaunay {
     Index vertex = 0;
     std::uint32_t stamp = 0, number = 0;
   };
-  std::vector<Local> local_ = std::vector<Local>(D <= 3 ? local_table_size : 0);
-  std::uint32_t local_stamp_ = 0;
-  std::vector<std::array<std::uint32_t, 2>> keys_;
-  std::vector<std::uint32_t> star_table_ =
-      std::vector<std::uint32_t>(D == 3 ? star_table_side * star_table_side : D == 2 ? 2 * star_table_side : 0);
-  Incremental_statistics stats_;
+  /// What one thread of insertions works with: the search's and the star's
+  /// scratch, its free slots, where its walks start. The serial insertions
+  /// have one (serial_), each zone of a zoned round its own.
+  struct Worker {
+    std::vector<Index> free;      // free slots (serial_'s: every free slot)
+    std::size_t last = 0;         // a finite cell made last: the next walk starts there
+    std::ptrdiff_t finite_change = 0;  // finite cells made minus destroyed, not yet in finite_cells_
+    Incremental_statistics stats;
+    std::vector<std::size_t> cavity;
+    std::vector<Boundary_facet> boundary;
+    std::vector<Index> new_cells;  // the slot of each boundary facet's new cell
+    Ridge_table ridges;
+    std::vector<Local> local = std::vector<Local>(D <= 3 ? local_table_size : 0);
+    std::uint32_t local_stamp = 0;
+    std::vector<std::array<std::uint32_t, 2>> keys;
+    std::vector<std::uint32_t> star_table =
+        std::vector<std::uint32_t>(D == 3 ? star_table_side * star_table_side : D == 2 ? 2 * star_table_side : 0);
+    // Zoned insertion only: the zone, its new slots next_slot … end_slot − 1,
+    // the vertices it left to the next round.
+    std::uint8_t zone = 0;
+    std::size_t next_slot = 0, end_slot = 0;
+    bool out_of_slots = false;
+    bool walk_failed = false;
+    std::vector<Index> deferred;
+  };
+  Worker serial_;
+  // Zoned insertion: the current round's cut (zone_of).
+  int cut_axis_ = 0;
+  double cut_ = 0;
   kernel::Static_filter_d<D> static_filter_;  // from the points' box: in front of the kernel's cascade
 };
 
