@@ -214,6 +214,12 @@ class Incremental_delaunay {
   /// (insert_in_zones: in parallel, the same cells and slots for any number
   /// of threads); tests lower it.
   std::size_t zoned_insertion_threshold = std::size_t{1} << 16;
+  /// A zone whose first zone_probe points wait more than a quarter of the
+  /// time gives up the round, and the rounds end: on a torus cut through its
+  /// hole, whose cells cross every such plane, 40 % of the points waited
+  /// after long partial searches, and one thread took twice its time
+  /// (tests lower it).
+  std::size_t zone_probe = 2048;
   /// Tests: scales the new slots each zone gets (below 1 zones run out of
   /// slots early, and their points wait for the next round).
   double zone_slots_scale = 1;
@@ -698,6 +704,7 @@ class Incremental_delaunay {
                  workers[1].deferred.end(), std::back_inserter(pending));
       if (check_each_insertion && !is_valid())
         throw std::logic_error("Incremental_delaunay: invalid after zoned round " + std::to_string(round));
+      if (workers[0].gave_up || workers[1].gave_up) break;
     }
     serial_.new_cells.clear();  // the last serial insertion's: other zones may have reused their slots
     for (const Index v : pending) insert_serially(v);
@@ -711,12 +718,14 @@ class Incremental_delaunay {
   /// the zone waited. What still fails waits in w.deferred.
   void insert_zone(Worker& w, const std::vector<Index>& points, const std::vector<std::size_t>& hints) {
     w.last = no_cell;
+    w.gave_up = false;
     std::size_t hint = no_cell;
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (k % hint_spacing == 0) hint = hints[k / hint_spacing];
+      if (k == zone_probe && w.deferred.size() > zone_probe / 4) w.gave_up = true;
       const Index v = points[k];
       bool inserted = false;
-      if (!w.out_of_slots) {
+      if (!w.out_of_slots && !w.gave_up) {
         w.walk_failed = false;
         if (w.last != no_cell) inserted = insert<true>(w, v);
         // A walk must start in a finite cell of the zone: the hint's slot may
@@ -734,6 +743,7 @@ class Incremental_delaunay {
     }
   }
   static constexpr std::size_t hint_spacing = 64;
+
 
   /// Step 3: inserts vertex v (points_[v]). Zoned: false, having changed
   /// nothing, when the cavity is not all w's zone's (find_cavity) or w's
@@ -1085,6 +1095,7 @@ class Incremental_delaunay {
     std::size_t next_slot = 0, end_slot = 0;
     bool out_of_slots = false;
     bool walk_failed = false;
+    bool gave_up = false;  // insert_zone: too many points waited (zone_probe)
     std::vector<Index> deferred;
   };
   Worker serial_;
