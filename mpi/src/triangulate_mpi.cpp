@@ -556,6 +556,9 @@ class Rank_triangulation {
         } else {
           const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
           dt = detail::Incremental_delaunay<D>();
+          // One thread per rank: zoned insertion would start threads beside
+          // the other ranks' and, on one thread, only cost.
+          dt.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
           dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
           built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
                            &all_blocks_);

@@ -19,7 +19,7 @@ enum class Engine {
   /// collected with the default region size; one region's size otherwise) is
   /// built by the incremental construction alone: up to there the walls and
   /// regions cost 1.3–1.9× its time on one thread and gain nothing on two
-  /// (docs/engines.md). In 4D and up, the incremental construction alone (the
+  /// (docs/engines.md); the project's own inserts in parallel zones there. In 4D and up, the incremental construction alone (the
   /// walls only add to it there).
   /// "The incremental construction" is the project's own (Engine::incremental)
   /// where it is measured faster than CGAL's, CGAL's (Engine::cgal) elsewhere:
