@@ -442,12 +442,16 @@ std::size_t check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, do
   one.check_each_insertion = true;
   build_zoned(one, points, 64, 1, slots_scale, probe);
   build_zoned(two, points, 64, 2, slots_scale, probe);
-  CHECK(finite_cells(one) == dewall::test::cgal_delaunay<D>(points));
+  const auto cells = finite_cells(one);
+  CHECK(cells == dewall::test::cgal_delaunay<D>(points));
+  CHECK(one.finite_cells() == cells.size());
   CHECK(two.is_valid());
   REQUIRE(one.slots() == two.slots());
-  bool same_slots = true;
-  for (std::size_t c = 0; c < one.slots(); ++c)
+  bool same_slots = true;  // cells and neighbours
+  for (std::size_t c = 0; c < one.slots(); ++c) {
     same_slots = same_slots && one.is_free(c) == two.is_free(c) && (one.is_free(c) || one.cell(c) == two.cell(c));
+    for (int i = 0; i <= D && same_slots && !one.is_free(c); ++i) same_slots = one.neighbor(c, i) == two.neighbor(c, i);
+  }
   CHECK(same_slots);
   CHECK(one.finite_cells() == two.finite_cells());
   CHECK(one.statistics().zoned_points == two.statistics().zoned_points);
@@ -477,4 +481,30 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   check_zoned<4>(dewall::test::lattice<4>(1000));
   // Zones that run out of slots leave their points to the next round.
   CHECK(check_zoned<3>(uniform3, 0.25) < check_zoned<3>(uniform3));
+}
+
+TEST_CASE("incremental: after zoned insertion, insert_more; zones of no points", "[incremental]") {
+  std::mt19937_64 rng(42);
+  const auto points = dewall::test::uniform<3>(2500, rng);
+  const auto more = dewall::test::uniform<3>(400, rng);
+  Incremental_delaunay<3> dt;
+  build_zoned(dt, points, 64, 2, 1, 2048);
+  REQUIRE(dt.statistics().zoned_points > 0);
+  // Inside the first points' box (the static filter was made for it).
+  std::vector<Point3> inside;
+  for (const auto& p : more) inside.push_back({{p.x[0] * 0.5 + 0.25, p.x[1] * 0.5 + 0.25, p.x[2] * 0.5 + 0.25}});
+  dt.insert_more(inside.size(), [&](std::size_t k) -> const std::array<double, 3>& { return inside[k].x; },
+                 [&](std::size_t k) { return points.size() + k; });
+  std::vector<Point3> all = points;
+  all.insert(all.end(), inside.begin(), inside.end());
+  CHECK(dt.is_valid());
+  CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<3>(all));
+  // Thresholds of 0: every point after the sample is zoned, rounds end when none is left.
+  for (const std::size_t n : {4, 5, 20, 300}) {
+    const std::vector<Point3> few(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(n));
+    Incremental_delaunay<3> small;
+    small.check_each_insertion = true;
+    build_zoned(small, few, 0, 2, 1, 2048);
+    CHECK(finite_cells(small) == dewall::test::cgal_delaunay<3>(few));
+  }
 }

@@ -61,6 +61,7 @@
 #include <vector>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face.hpp"
@@ -158,7 +159,7 @@ class Incremental_delaunay {
         }
       }
     }
-    if (count - sample >= zoned_insertion_threshold) insert_in_zones(sample, count, box);
+    if (count > sample && count - sample >= zoned_insertion_threshold) insert_in_zones(sample, count, box);
     else insert_vertices(sample, count);
     return true;
   }
@@ -204,8 +205,9 @@ class Incremental_delaunay {
   /// The number of vertices (finite), ids 0 … vertices() − 1.
   std::size_t vertices() const { return points_.size(); }
 
-  /// Tests: run is_valid() after every insertion (O(n) each), throwing
-  /// std::logic_error at the first failure.
+  /// Tests: run is_valid() after every serial insertion and after every
+  /// round of zoned insertion (O(n) each), throwing std::logic_error at the
+  /// first failure.
   bool check_each_insertion = false;
   /// Tests: whether the static filter decides every predicate exactly (the
   /// points lie on a small lattice: kernel/static_filter.hpp).
@@ -602,9 +604,13 @@ class Incremental_delaunay {
   /// cells whose vertices are all the zone's; else the point waits for the
   /// next round (the cavity's cells not yet changed). Why no two zones touch
   /// the same data: a zone changes only cells with all D + 1 vertices its
-  /// own (the cavity), and the neighbour reference, mark and vertices of
-  /// cells sharing a facet with one, which have D ≥ 2 of its vertices, so
-  /// they are no other zone's cavity and share no facet with one; the walk
+  /// own (the cavity), and the neighbour reference and mark of cells
+  /// sharing a facet with one, which have D of its vertices, so they are no
+  /// other zone's cavity and share no facet with one (two facets of a cell
+  /// share D − 1 vertices; above 2D the infinite vertex, every zone's, is at
+  /// most one of them, so D − 1 ≥ 2 leaves one of the zone's own; in 2D a
+  /// hull cell {t, ∞, u} would border both zones, so there ∞ is no zone's
+  /// and points outside the hull wait); the walk
   /// starts in the zone's own cells and stops before any other. So each
   /// zone's work reads and writes only what no other zone changes in the
   /// round, and its result (which points wait, which slots hold which
@@ -612,23 +618,24 @@ class Incremental_delaunay {
   /// start alone, not on the threads' timing: the cells, their slots and
   /// the output order are the same for any number of threads. The
   /// Delaunay triangulation (perturbed) is unique, so it is CGAL's in any
-  /// insertion order. Points outside the hull (infinite cells are no
-  /// zone's) and those still waiting after D rounds are inserted one by one.
+  /// insertion order. The points still waiting after D rounds are inserted
+  /// one by one.
   /// Cf. hxt (Marot, Pellerin, Remacle 2019), which partitions along a
   /// Hilbert curve and lets threads race; here the partition is by planes
   /// and nothing races.
   void insert_in_zones(std::size_t first, std::size_t last, const Box<D>& box) {
     std::vector<Index> pending(last - first);
     for (std::size_t k = first; k < last; ++k) pending[k - first] = static_cast<Index>(k);
-    // Cells per point so far: each zone's new slots are sized from it.
-    const double per_point = static_cast<double>(slots() - serial_.free.size()) / static_cast<double>(first);
     std::array<int, D> axes;
     for (int j = 0; j < D; ++j) axes[j] = j;
     std::stable_sort(axes.begin(), axes.end(),
                      [&](int a, int b) { return box.hi[a] - box.lo[a] > box.hi[b] - box.lo[b]; });
     std::array<Worker, 2> workers;
-    for (int round = 0; round < D && pending.size() >= zoned_insertion_threshold / 16; ++round) {
+    for (int round = 0; round < D && !pending.empty() && pending.size() >= zoned_insertion_threshold / 16; ++round) {
       const int axis = axes[round];
+      // Cells per point so far (it grows on surfaces): each zone's new slots are sized from it.
+      const double per_point =
+          static_cast<double>(slots() - serial_.free.size()) / static_cast<double>(last - pending.size());
       std::vector<double> along(pending.size());
       for (std::size_t k = 0; k < pending.size(); ++k) along[k] = points_[pending[k]].x[axis];
       const auto median = along.begin() + static_cast<std::ptrdiff_t>(along.size() / 2);
@@ -674,9 +681,13 @@ class Incremental_delaunay {
           for (int i = 0; i <= D; ++i) own = own && owns(workers[z], cells_[c].v[i]);
           hints[z].push_back(own ? c : no_cell);
         }
-      tbb::parallel_for(std::size_t{0}, std::size_t{2}, [&](std::size_t z) {
-        const kernel::Fp_environment_guard guard;
-        insert_zone(workers[z], points[z], hints[z]);
+      // Isolated: while waiting for the other zone this thread takes no
+      // unrelated outer task (a hybrid's region builds inside one).
+      tbb::this_task_arena::isolate([&] {
+        tbb::parallel_for(std::size_t{0}, std::size_t{2}, [&](std::size_t z) {
+          const kernel::Fp_environment_guard guard;
+          insert_zone(workers[z], points[z], hints[z]);
+        });
       });
       // The zones' unused slots become free ones (a range ending the array is cut off).
       for (std::size_t z = 2; z-- > 0;) {
