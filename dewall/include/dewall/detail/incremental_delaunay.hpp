@@ -41,6 +41,10 @@
 //        across their facets through p: in 2D and 3D through a table indexed
 //        by the facets' directed keys (glue_star_directed), above 3D and for
 //        very large cavities by their D − 1 other vertices in a hash table.
+//  4. Both cores: from zoned_insertion_threshold points on, step 3 runs in
+//     rounds of two zones (half-spaces), each a task inserting only where
+//     its walk and cavity stay in its own cells (insert_in_zones: why the
+//     tasks share nothing and the result is the same for any thread count).
 // Expected O(n log n) for points in general position (BRIO), the walk and the
 // cavities O(1) per point on well-spread data.
 #pragma once
@@ -48,9 +52,9 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <iterator>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <limits>
 #include <new>
 #include <span>
@@ -315,7 +319,8 @@ class Incremental_delaunay {
     return refs;
   }
 
-  /// Whether q lies inside the perturbed sphere of finite cell c.
+  /// Whether q lies inside the perturbed sphere of finite cell c. Inlined in
+  /// both searches (GCC kept it out of line in the zoned one: a call per test).
   [[gnu::always_inline]] bool sphere_holds(std::size_t c, const Point& q) const {
     const auto refs = sphere_points(c, q);
     if (const auto s = static_filter_.side_of_oriented_sphere(refs)) {
