@@ -100,7 +100,7 @@ TEST_CASE("messages: a usage error says where the help is, help prints what is a
   CHECK(one.out == cli("triangulate --help").out);
 }
 
-TEST_CASE("messages: help to a full device says why; a file size limit is a write error", "[cli][messages]") {
+TEST_CASE("messages: help to a full device says why, and a file size limit is a write error", "[cli][messages]") {
   const auto cli = fresh("messages_test_limits");
   SECTION("help > full") {
     if (::mknod(cli.path("full").c_str(), S_IFCHR | 0666, makedev(1, 7)) != 0) {

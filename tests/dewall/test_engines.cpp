@@ -258,7 +258,7 @@ TEST_CASE("engines: a stream settled at its first region never hands over", "[en
   CHECK(serial.size() == collected.simplices.size());
 }
 
-TEST_CASE("engines: a streaming task keeps one block; a held stream passes nothing on until released",
+TEST_CASE("engines: a streaming task keeps one block, and a held stream passes nothing on until released",
           "[engine][stream]") {
   struct Recorder final : dewall::detail::Simplex_output<3> {
     std::vector<std::size_t> block_sizes;

@@ -323,7 +323,7 @@ TEST_CASE("incremental: insert_more after build gives the triangulation of all t
   check_insert_more<4>(dewall::test::uniform<4>(150, rng));
 }
 
-TEST_CASE("incremental: on a small lattice the static filter decides exactly; off it, the cascade does", "[incremental]") {
+TEST_CASE("incremental: on a small lattice the static filter decides exactly, and off it the cascade does", "[incremental]") {
   std::mt19937_64 rng(38);
   const auto distinct = [](auto points) {
     std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.x < b.x; });
@@ -483,7 +483,7 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   CHECK(check_zoned<3>(uniform3, 0.25) < check_zoned<3>(uniform3));
 }
 
-TEST_CASE("incremental: after zoned insertion, insert_more; zones of no points", "[incremental]") {
+TEST_CASE("incremental: insert_more after zoned insertion, and zones of no points", "[incremental]") {
   std::mt19937_64 rng(42);
   const auto points = dewall::test::uniform<3>(2500, rng);
   const auto more = dewall::test::uniform<3>(400, rng);
