@@ -25,9 +25,8 @@ std::vector<std::size_t> checked_distinct_points(std::span<const kernel::Point_d
                                                  const std::vector<std::size_t>* given) {
   using K = kernel::Filtered_kernel_d<D>;
   std::vector<std::size_t> distinct = given ? *given : distinct_points<K>(K{}, points);
-  std::vector<std::array<double, D>> coords(distinct.size());
-  for (std::size_t i = 0; i < distinct.size(); ++i) coords[i] = points[distinct[i]].x;
-  require_full_dimension<D>(std::span<const std::array<double, D>>(coords));
+  require_full_dimension<D>(distinct.size(),
+                            [&](std::size_t i) -> const std::array<double, D>& { return points[distinct[i]].x; });
   return distinct;
 }
 

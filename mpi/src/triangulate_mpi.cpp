@@ -91,6 +91,8 @@
 #include <unordered_set>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "dewall/detail/incremental_delaunay.hpp"
 #include "dewall/detail/input.hpp"
 #include "dewall/kernel/point.hpp"
@@ -549,20 +551,24 @@ class Rank_triangulation {
         // are inserted into it (the static filter made for the box of all
         // blocks, which holds every point a round can bring).
         bool built = spanning_;
-        if (spanning_) {
-          dt.insert_more(
-              points_.size() - in_dt_, [&](std::size_t k) -> const Coords<D>& { return points_[in_dt_ + k].x; },
-              [&](std::size_t k) { return in_dt_ + k; });
-        } else {
-          const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
-          dt = detail::Incremental_delaunay<D>();
-          // One thread per rank: zoned insertion would start threads beside
-          // the other ranks' and, on one thread, only cost.
-          dt.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
-          dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
-          built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
-                           &all_blocks_);
-        }
+        // One thread per rank: the engine's parallel parts (zoned insertion,
+        // the order's keys) would start threads beside the other ranks' and,
+        // on one thread, zones only cost.
+        tbb::task_arena one_thread(1);
+        one_thread.execute([&] {
+          if (spanning_) {
+            dt.insert_more(
+                points_.size() - in_dt_, [&](std::size_t k) -> const Coords<D>& { return points_[in_dt_ + k].x; },
+                [&](std::size_t k) { return in_dt_ + k; });
+          } else {
+            const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
+            dt = detail::Incremental_delaunay<D>();
+            dt.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+            dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
+            built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
+                             &all_blocks_);
+          }
+        });
         ++stats_.builds;
         in_dt_ = points_.size();
         stats_.build_seconds += MPI_Wtime() - t1;

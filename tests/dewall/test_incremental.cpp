@@ -163,6 +163,32 @@ TEST_CASE("incremental: the BRIO order is a permutation, the same on every run",
   }
 }
 
+TEST_CASE("incremental: the radix sort is std::stable_sort, and the order the same on one and two threads",
+          "[incremental]") {
+  std::mt19937_64 rng(35);
+  // Sizes on both sides of the chunked (parallel) passes, keys with many
+  // repeats (stability shows) and keys over all 52 bits.
+  for (std::size_t n : {std::size_t{0}, std::size_t{1}, std::size_t{70000}, std::size_t{300001}})
+    for (const int key_bits : {8, 52}) {
+      std::vector<std::pair<std::uint64_t, std::uint32_t>> items(n);
+      for (std::size_t i = 0; i < n; ++i)
+        items[i] = {rng() & ((std::uint64_t{1} << key_bits) - 1), static_cast<std::uint32_t>(i)};
+      auto expected = items;
+      std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (const int threads : {1, 2}) {
+        auto sorted = items;
+        tbb::task_arena(threads).execute([&] { dewall::detail::radix_sort(sorted, key_bits); });
+        CHECK(sorted == expected);
+      }
+    }
+  const auto points = dewall::test::uniform<3>(200000, rng);
+  auto coords = [&](std::size_t i) -> const std::array<double, 3>& { return points[i].x; };
+  std::vector<std::uint32_t> one, two;
+  tbb::task_arena(1).execute([&] { one = dewall::detail::brio_order<3>(points.size(), coords); });
+  tbb::task_arena(2).execute([&] { two = dewall::detail::brio_order<3>(points.size(), coords); });
+  CHECK(one == two);
+}
+
 TEST_CASE("incremental: the structure is valid after every insertion", "[incremental]") {
   std::mt19937_64 rng(32);
   check_against_cgal<2>(dewall::test::lattice_samples<2>(300, 6, rng), true);

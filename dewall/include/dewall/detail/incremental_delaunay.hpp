@@ -64,6 +64,7 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -114,7 +115,8 @@ class Incremental_delaunay {
 
   /// Triangulates `count` points (distinct, finite): point k's coordinates
   /// are coordinates(k) (an array of D doubles), its id for the caller id(k)
-  /// (input_index returns it). Returns false when the points do not span E^D
+  /// (input_index returns it; both are called from several threads at
+  /// once). Returns false when the points do not span E^D
   /// (the object then holds nothing usable). \throws std::length_error beyond
   /// max_slots cells (2^30 in 2D and 3D, 2^29 above); after an exception the
   /// object is unusable.
@@ -136,10 +138,13 @@ class Incremental_delaunay {
     reserve(expected_cells(count));
     points_.resize(count);
     input_.resize(count);
-    for (std::size_t k = 0; k < count; ++k) {
-      points_[k].x = coordinates(order[k]);
-      input_[k] = static_cast<Index>(id(order[k]));
-    }
+    // A gather from the whole input (a cache miss a point): in parallel.
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& range) {
+      for (std::size_t k = range.begin(); k < range.end(); ++k) {
+        points_[k].x = coordinates(order[k]);
+        input_[k] = static_cast<Index>(id(order[k]));
+      }
+    });
     std::vector<std::uint32_t>().swap(order);
     // Cells per point range from 6.5 (volume) to 20 (samples of a torus) in
     // 3D, and more above: the first sixteenth of the BRIO order (its first

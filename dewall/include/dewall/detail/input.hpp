@@ -88,17 +88,16 @@ class Affine_basis {
   std::vector<int> pivot_;
 };
 
-/// Throws Invalid_input unless the points span E^D.
-template <int D>
-void require_full_dimension(std::span<const std::array<double, D>> x) {
-  // \pre x.size() >= D + 1 (checked by the caller).
+/// Throws Invalid_input unless the `n` points x(0) … x(n − 1) span E^D.
+template <int D, class Coordinates>
+void require_full_dimension(std::size_t n, Coordinates&& x) {
+  // \pre n >= D + 1 (checked by the caller).
   // Points are taken in a strided order first so that ordered inputs (a plane
   // after a plane) reach full rank after a few rows.
-  Affine_basis<D> basis(x[0]);
-  const std::size_t n = x.size();
+  Affine_basis<D> basis(x(0));
   const std::size_t stride = std::max<std::size_t>(1, n / 64);
-  for (std::size_t i = 1; i < n && basis.rank() < D; i += stride) basis.add(x[i]);
-  for (std::size_t i = 1; i < n && basis.rank() < D; ++i) basis.add(x[i]);
+  for (std::size_t i = 1; i < n && basis.rank() < D; i += stride) basis.add(x(i));
+  for (std::size_t i = 1; i < n && basis.rank() < D; ++i) basis.add(x(i));
   if (basis.rank() < D) {
     static const char* const names[] = {"a point", "collinear", "coplanar", "in one 3-flat", "in one 4-flat",
                                         "in one 5-flat"};
@@ -106,6 +105,10 @@ void require_full_dimension(std::span<const std::array<double, D>> x) {
                         " distinct points are " + names[basis.rank()] + " (affine dimension " +
                         std::to_string(basis.rank()) + ")");
   }
+}
+template <int D>
+void require_full_dimension(std::span<const std::array<double, D>> x) {
+  require_full_dimension<D>(x.size(), [&](std::size_t i) -> const std::array<double, D>& { return x[i]; });
 }
 
 }  // namespace dewall::detail

@@ -24,7 +24,8 @@
 //    where the last one ended.
 // 3. One sort of (round, index) keys: the keys are computed in input order
 //    (the coordinates read once, in sequence) and radix sorted (stable: equal
-//    keys keep input order).
+//    keys keep input order); both in parallel, with the same result for any
+//    number of threads (the serial parts of a two-core build: docs/engines.md).
 // Floating point only ranks here: the order changes the time, never the
 // triangulation (which is a function of the point set).
 #pragma once
@@ -36,6 +37,9 @@
 #include <limits>
 #include <utility>
 #include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 namespace dewall::detail {
 
@@ -140,19 +144,42 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
+/// Calls f(c) for c = 0 … chunks − 1, as parallel tasks when there are several.
+template <class F>
+void for_each_chunk(std::size_t chunks, F&& f) {
+  if (chunks == 1) f(std::size_t{0});
+  else tbb::parallel_for(std::size_t{0}, chunks, f);
+}
+
 /// Sorts `items` by their first member, stably (least significant digit
 /// first, 11 bits a pass, only over the bits `key_bits` that keys use).
+/// Each pass runs over contiguous chunks of the items, in parallel: every
+/// chunk counts its digits, a chunk's items of a digit go after those of
+/// the chunks before it, and each chunk scatters its items in order — so the
+/// result is the one stable order, whatever the chunks and the threads.
 inline void radix_sort(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items, int key_bits) {
   constexpr int digit = 11;
   constexpr std::size_t buckets = std::size_t{1} << digit;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> other(items.size());
-  std::vector<std::size_t> start(buckets);
+  const std::size_t n = items.size();
+  // Chunks of at least 2^16 items (a chunk's counts are 16 KB), at most 64.
+  const std::size_t chunks = std::clamp<std::size_t>(n >> 16, 1, 64);
+  const auto chunk_begin = [&](std::size_t c) { return n * c / chunks; };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> other(n);
+  std::vector<std::size_t> start(chunks * buckets);  // [chunk][digit]
   for (int shift = 0; shift < key_bits; shift += digit) {
-    std::fill(start.begin(), start.end(), 0);
-    for (const auto& item : items) ++start[(item.first >> shift) & (buckets - 1)];
+    const auto digit_of = [shift](const auto& item) { return (item.first >> shift) & (buckets - 1); };
+    for_each_chunk(chunks, [&](std::size_t c) {
+      std::size_t* const count = &start[c * buckets];
+      std::fill(count, count + buckets, 0);
+      for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) ++count[digit_of(items[i])];
+    });
     std::size_t sum = 0;
-    for (auto& s : start) sum += std::exchange(s, sum);
-    for (const auto& item : items) other[start[(item.first >> shift) & (buckets - 1)]++] = item;
+    for (std::size_t d = 0; d < buckets; ++d)
+      for (std::size_t c = 0; c < chunks; ++c) sum += std::exchange(start[c * buckets + d], sum);
+    for_each_chunk(chunks, [&](std::size_t c) {
+      std::size_t* const next = &start[c * buckets];
+      for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) other[next[digit_of(items[i])]++] = items[i];
+    });
     items.swap(other);
   }
 }
@@ -179,7 +206,8 @@ Box<D> bounding_box(std::size_t count, Coords&& coords) {
 }
 
 /// The BRIO order of `count` points: a permutation of 0 … count − 1.
-/// `coords(i)` gives point i's coordinates (an array of D doubles, finite);
+/// `coords(i)` gives point i's coordinates (an array of D doubles, finite;
+/// called from several threads at once);
 /// `box` is bounding_box(count, coords). Deterministic: a function of the
 /// coordinates and `seed`.
 template <int D, class Coords>
@@ -199,22 +227,25 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
   int last = 0;
   for (std::size_t n = count; n > smallest_round && last < 15; n /= 4) ++last;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    const auto& x = coords(i);
-    std::array<std::uint32_t, D> cell;
-    for (int j = 0; j < D; ++j) {
-      double t = (x[j] - lo[j]) * scale[j];
-      t = t < 0 || !(t == t) ? 0 : t > cells ? cells : t;  // overflowing differences (|x| near 2^1023)
-      cell[j] = static_cast<std::uint32_t>(t);
+  // Each key is a function of its point and index alone: computed in parallel.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& range) {
+    for (std::size_t i = range.begin(); i < range.end(); ++i) {
+      const auto& x = coords(i);
+      std::array<std::uint32_t, D> cell;
+      for (int j = 0; j < D; ++j) {
+        double t = (x[j] - lo[j]) * scale[j];
+        t = t < 0 || !(t == t) ? 0 : t > cells ? cells : t;  // overflowing differences (|x| near 2^1023)
+        cell[j] = static_cast<std::uint32_t>(t);
+      }
+      std::uint64_t draw = mix64(seed ^ i);
+      int level = 0;
+      while (level < last && (draw & 3) == 0) ++level, draw >>= 2;
+      const int round = last - level;
+      std::uint64_t h = hilbert_index<D>(cell, bits);
+      if (round % 2) h = ~h & ((std::uint64_t{1} << round_shift) - 1);  // every other round backwards
+      keyed[i] = {std::uint64_t(round) << round_shift | h, static_cast<std::uint32_t>(i)};
     }
-    std::uint64_t draw = mix64(seed ^ i);
-    int level = 0;
-    while (level < last && (draw & 3) == 0) ++level, draw >>= 2;
-    const int round = last - level;
-    std::uint64_t h = hilbert_index<D>(cell, bits);
-    if (round % 2) h = ~h & ((std::uint64_t{1} << round_shift) - 1);  // every other round backwards
-    keyed[i] = {std::uint64_t(round) << round_shift | h, static_cast<std::uint32_t>(i)};
-  }
+  });
   radix_sort(keyed, round_shift + 4);
   std::vector<std::uint32_t> order(count);
   for (std::size_t k = 0; k < count; ++k) order[k] = keyed[k].second;
