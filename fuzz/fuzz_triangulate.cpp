@@ -37,7 +37,10 @@
 //     simplices, the same list on one thread, with the regions built by either
 //     incremental construction;
 //  6. Engine::incremental (the project's own Bowyer–Watson) gives CGAL's
-//     simplices, positively oriented, each once.
+//     simplices, positively oriented, each once;
+//  7. its zoned (parallel) insertion, from the first D + 1 points on: CGAL's
+//     cells, and the same cells and neighbours in the same slots on two
+//     threads as on one.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -47,7 +50,10 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/task_arena.h>
+
 #include "dewall/certify/certify.hpp"
+#include "dewall/detail/incremental_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "fuzz_common.hpp"
@@ -227,6 +233,38 @@ void run(Byte_source& in) {
     for (int i = 0; i <= D; ++i) refs[static_cast<std::size_t>(i)] = &points[s[static_cast<std::size_t>(i)]];
     CHECK_ON(checker, dewall::kernel::orientation_d<D>(refs) == dewall::kernel::POSITIVE);
   }
+
+  // Property 7: zoned insertion (Incremental_delaunay::insert_in_zones, which
+  // the library uses from 2^16 points on), every point after the first D + 1
+  // in zones: CGAL's cells, and on two threads the same cells in the same
+  // slots as on one; zones that run out of slots or give up early, by the
+  // input's size.
+  std::vector<Point_d<D>> distinct;
+  std::vector<std::uint32_t> input_of;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (first.at(points[i].x) == i) distinct.push_back(points[i]), input_of.push_back(static_cast<std::uint32_t>(i));
+  std::array<dewall::detail::Incremental_delaunay<D>, 2> zoned;
+  for (int threads = 1; threads <= 2; ++threads) {
+    auto& dt = zoned[static_cast<std::size_t>(threads - 1)];
+    dt.zoned_insertion_threshold = 0;
+    dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
+    dt.zone_probe = points.size() % 3 ? 2048 : 4;
+    tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
+  }
+  std::vector<dewall::Simplex<D>> cells;
+  CHECK_ON(checker, zoned[0].slots() == zoned[1].slots());
+  for (std::size_t c = 0; c < zoned[0].slots(); ++c) {
+    CHECK_ON(checker, zoned[0].is_free(c) == zoned[1].is_free(c));
+    if (zoned[0].is_free(c)) continue;
+    CHECK_ON(checker, zoned[0].cell(c) == zoned[1].cell(c));
+    for (int i = 0; i <= D; ++i) CHECK_ON(checker, zoned[0].neighbor(c, i) == zoned[1].neighbor(c, i));
+    if (zoned[0].is_infinite(c)) continue;
+    dewall::Simplex<D> s;
+    for (int i = 0; i <= D; ++i) s[static_cast<std::size_t>(i)] = input_of[zoned[0].input_index(zoned[0].cell(c)[static_cast<std::size_t>(i)])];
+    cells.push_back(s);
+  }
+  CHECK_ON(checker, zoned[0].is_valid());
+  CHECK_ON(checker, dewall::test::as_set<D>(cells) == expected);
 }
 
 }  // namespace

@@ -29,9 +29,9 @@
 //     order (exact rank, Affine_basis); the points passed over are inserted
 //     next.
 //  3. Insert each point p:
-//     a. locate: a visibility walk (orientation tests) from the last cell
-//        created to a cell holding p, or to an infinite cell whose hull
-//        facet p sees;
+//     a. locate: a visibility walk (orientation tests) from the first cell
+//        the last insertion created (the one at its point) to a cell
+//        holding p, or to an infinite cell whose hull facet p sees;
 //     b. cavity: the cells in conflict with p, found breadth-first from there
 //        (a finite cell: p inside its perturbed sphere; an infinite cell: p
 //        beyond its hull facet, or in that facet's hyperplane and in conflict
@@ -789,6 +789,12 @@ class Incremental_delaunay {
       if (!is_infinite(c)) --w.finite_change;
     std::size_t reused = 0;
     w.new_cells.clear();
+    // The next walk starts in the first finite new cell: it holds the facet
+    // of the start cell (where q was), so it lies at q; the last one, at the
+    // far end of the breadth-first cavity, is often a long cell reaching far
+    // away (on surface samples, through the inside), and walks from it were
+    // twice as long (a torus of 2·10^5 points: 49 steps a point against 24).
+    bool started = false;
     for (const Boundary_facet& f : w.boundary) {
       std::size_t s;
       if (reused < w.cavity.size()) s = w.cavity[reused++];
@@ -811,7 +817,7 @@ class Incremental_delaunay {
         if (f.vertices[i] == infinite) finite = false;
       if (finite) {
         ++w.finite_change;
-        w.last = s;
+        if (!started) w.last = s, started = true;
       }
     }
     if (ridge_table_only || !glue_star_directed(w)) {
@@ -1098,7 +1104,7 @@ class Incremental_delaunay {
   /// have one (serial_), each zone of a zoned round its own.
   struct Worker {
     std::vector<Index> free;      // free slots (serial_'s: every free slot)
-    std::size_t last = 0;         // a finite cell made last: the next walk starts there
+    std::size_t last = 0;         // a finite cell the last insertion made: the next walk starts there
     std::ptrdiff_t finite_change = 0;  // finite cells made minus destroyed, not yet in finite_cells_
     Incremental_statistics stats;
     std::vector<std::size_t> cavity;

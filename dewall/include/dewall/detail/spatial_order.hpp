@@ -213,7 +213,8 @@ Box<D> bounding_box(std::size_t count, Coords&& coords) {
 template <int D, class Coords>
 std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const Box<D>& box,
                                       std::size_t smallest_round = 1000, std::uint64_t seed = 0x5eed) {
-  const auto& [lo, hi] = box;
+  const auto& lo = box.lo;  // not a structured binding: clang cannot capture one in a lambda
+  const auto& hi = box.hi;
   constexpr int bits = 60 / D < 16 ? 60 / D : 16;
   constexpr int round_shift = D * bits;  // the round above the Hilbert index
   const double cells = static_cast<double>((std::uint32_t{1} << bits) - 1);
