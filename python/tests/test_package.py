@@ -59,7 +59,13 @@ def test_gil_released_during_a_large_triangulation():
     ticks = 0
 
     def build():
-        dewall.Delaunay(points, threads=1)
+        # Builds for at least 0.3 s whatever the machine's speed (one build of
+        # these points took 0.13 s here): a held GIL would let the loop below
+        # run only between builds.
+        while True:
+            dewall.Delaunay(points, threads=1)
+            if time.perf_counter() - start > 0.3:
+                break
         done.set()
 
     worker = threading.Thread(target=build)

@@ -195,6 +195,11 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
                        tally.static_undecided, points);
   tally.check_stage<D>("sphere static filter, wide box", expected,
                        static_filter_of<D>(points, true).side_of_oriented_sphere(refs), tally.static_undecided, points);
+  // The static bound, then the cascade on the same determinant (always a sign).
+  tally.check<D>("sphere static filter, then the cascade", expected,
+                 static_filter_of<D>(points).side_of_oriented_sphere_sign(refs), points);
+  tally.check<D>("sphere static filter, then the cascade, wide box", expected,
+                 static_filter_of<D>(points, true).side_of_oriented_sphere_sign(refs), points);
   std::swap(refs[0], refs[D]);  // an odd permutation of the simplex flips the sign
   tally.check<D>("side_of_oriented_sphere_d, p_0 and p_D swapped", -expected, side_of_oriented_sphere_d<D>(refs),
                  points);

@@ -328,16 +328,14 @@ class Incremental_delaunay {
   /// both searches (GCC kept it out of line in the zoned one: a call per test).
   [[gnu::always_inline]] bool sphere_holds(std::size_t c, const Point& q) const {
     const auto refs = sphere_points(c, q);
-    if (const auto s = static_filter_.side_of_oriented_sphere(refs)) {
-      if (*s != kernel::ZERO) return *s == kernel::POSITIVE;
-      return exact_zero_perturbed(refs);
-    }
-    return kernel::side_of_oriented_sphere_d_sos<D>(refs) == kernel::ON_POSITIVE_SIDE;
+    const kernel::Sign s = static_filter_.side_of_oriented_sphere_sign(refs);
+    if (s != kernel::ZERO) return s == kernel::POSITIVE;
+    return exact_zero_perturbed(refs);
   }
-  /// sphere_holds for an exact zero of the static filter (exact on this
-  /// lattice): the perturbation's orientations, through the same filter.
-  /// Out of line: inlined, it slowed the cavity search on inputs that never
-  /// tie.
+  /// sphere_holds for an exact zero: the perturbation's orientations,
+  /// through the static filter first (the points are input points, in its
+  /// box). Out of line: inlined, it slowed the cavity search on inputs that
+  /// never tie.
   [[gnu::noinline]] bool exact_zero_perturbed(const kernel::Sphere_points<D>& refs) const {
     return kernel::perturbed_side_of_sphere<D>(
                refs,

@@ -65,10 +65,18 @@ bool same_coordinate(const Point_refs<D, N>& p, int j) {
 /// `computed` (optional) receives the double determinant when the filter got that far.
 template <class Recipe, int D>
 [[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p,
-                                                         double* computed = nullptr) {
+                                                         double* computed = nullptr);
+
+/// Stage 1's decision from the matrix m that the recipe makes of p and a
+/// callable giving determinant<double>(m), asked for only once the column
+/// maxima are inside the filter's domain. The static filter
+/// (static_filter.hpp), which has computed both already, decides here what
+/// its own bound leaves, without computing them again.
+template <class Recipe, int D, class Determinant>
+[[gnu::always_inline]] inline std::optional<Sign> filter_decision(const Point_refs<D, Recipe::arity>& p,
+                                                                  const Matrix<double, Recipe::size>& m,
+                                                                  Determinant&& determinant_of_m, double* computed) {
   constexpr int K = Recipe::size;
-  const auto m = Recipe::template matrix<double>(
-      [&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
   double bound = Recipe::epsilon;
   for (int j = 0; j < K; ++j) {
     double column_max = 0;
@@ -84,11 +92,17 @@ template <class Recipe, int D>
     }
     bound *= column_max;
   }
-  const double det = determinant<double, K>(m);
+  const double det = determinant_of_m();
   if (computed) *computed = det;
   if (det > bound) return Recipe::sign_adjust;
   if (det < -bound) return -Recipe::sign_adjust;
   return std::nullopt;
+}
+
+template <class Recipe, int D>
+[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p, double* computed) {
+  const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+  return filter_decision<Recipe, D>(p, m, [&] { return determinant<double, Recipe::size>(m); }, computed);
 }
 
 /// Stage 1 again, on the points scaled by a power of two 2^s that brings the
@@ -448,6 +462,22 @@ template <class Recipe, int D>
   count(stats.exact);
   ++slow.exact;
   return exact<Recipe, D>(p, integers);
+}
+
+/// The cascade from stage 1's decision on, for a caller that has computed
+/// the matrix m the recipe makes of p and det = determinant<double>(m) (the
+/// same operations as stage 1's, so the same double): what filtered(p)
+/// answers, without computing them again. Out of line: the static filter's
+/// callers reach it only where its bound failed.
+template <class Recipe, int D>
+[[gnu::noinline]] Sign filtered_after_static(const Point_refs<D, Recipe::arity>& p,
+                                             const Matrix<double, Recipe::size>& m, double det) {
+  double computed = std::numeric_limits<double>::quiet_NaN();  // NaN: the filter left its domain
+  if (auto s = filter_decision<Recipe, D>(p, m, [det] { return det; }, &computed)) {
+    count(Recipe::stats().filter);
+    return *s;
+  }
+  return after_filter<Recipe, D>(p, computed);
 }
 
 /// The cascade, counting which stage decided. Exact in any floating-point
