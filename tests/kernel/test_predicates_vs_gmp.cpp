@@ -195,6 +195,9 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
                        tally.static_undecided, points);
   tally.check_stage<D>("sphere static filter, wide box", expected,
                        static_filter_of<D>(points, true).side_of_oriented_sphere(refs), tally.static_undecided, points);
+  tally.check_stage<D>("sphere static, then semi-static filter", expected,
+                       static_filter_of<D>(points, true).side_of_oriented_sphere_filtered(refs),
+                       tally.static_undecided, points);
   // The static bound, then the cascade on the same determinant (always a sign).
   tally.check<D>("sphere static filter, then the cascade", expected,
                  static_filter_of<D>(points).side_of_oriented_sphere_sign(refs), points);

@@ -161,14 +161,13 @@ class Static_filter_d {
   /// cascade computing the determinant again took a tenth of a torus's
   /// construction. \pre the points lie in the box (and on the lattice).
   [[gnu::always_inline]] Sign side_of_oriented_sphere_sign(const Sphere_points<D>& p) const {
-    using Recipe = Side_of_sphere_recipe<D>;
-    if (!valid_) return stages::filtered<Recipe, D>(p);
-    const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
-    const double det = determinant<double, Recipe::size>(m);
-    if (det > sphere_bound_) return Recipe::sign_adjust;
-    if (det < -sphere_bound_) return -Recipe::sign_adjust;
-    if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
-    return stages::filtered_after_static<Recipe, D>(p, m, det);
+    return *sphere_through_filters<true>(p);
+  }
+  /// The same through the static and the semi-static filter only (on the
+  /// same determinant): a sign when one of them proves it, else nothing —
+  /// for a caller to whom an undecided test costs less than the exact stages.
+  [[gnu::always_inline]] std::optional<Sign> side_of_oriented_sphere_filtered(const Sphere_points<D>& p) const {
+    return sphere_through_filters<false>(p);
   }
 
  private:
@@ -181,6 +180,22 @@ class Static_filter_d {
     if (det < -bound) return -Recipe::sign_adjust;
     if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
     return std::nullopt;
+  }
+
+  template <bool Every_stage>
+  [[gnu::always_inline]] std::optional<Sign> sphere_through_filters(const Sphere_points<D>& p) const {
+    using Recipe = Side_of_sphere_recipe<D>;
+    if (!valid_) {
+      if constexpr (Every_stage) return stages::filtered<Recipe, D>(p);
+      else return stages::filter<Recipe, D>(p);
+    }
+    const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+    const double det = determinant<double, Recipe::size>(m);
+    if (det > sphere_bound_) return Recipe::sign_adjust;
+    if (det < -sphere_bound_) return -Recipe::sign_adjust;
+    if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
+    if constexpr (Every_stage) return stages::filtered_after_static<Recipe, D>(p, m, det);
+    else return stages::filter_decision<Recipe, D>(p, m, [det] { return det; }, nullptr);
   }
 
   bool valid_ = false, exact_ = false;
