@@ -41,6 +41,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "dewall/kernel/floating_point.hpp"
+
 namespace dewall::detail {
 
 /// The low 16 bits of v with two zero bits after each (bit b moves to bit
@@ -230,6 +232,9 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
   // Each key is a function of its point and index alone: computed in parallel.
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& range) {
+    // TBB runs tasks in the environment its arena recorded, not the caller's:
+    // without the guard the order would depend on it (the review of 2026-11-26).
+    const kernel::Fp_environment_guard guard;
     for (std::size_t i = range.begin(); i < range.end(); ++i) {
       const auto& x = coords(i);
       std::array<std::uint32_t, D> cell;
