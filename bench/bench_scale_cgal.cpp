@@ -7,8 +7,9 @@
 // parallel on all cores (Parallel_tag: CGAL's TBB construction with its lock
 // grid). Prints one JSON line: points, finite cells, and seconds for the
 // construction from the points in memory (reading the file is not timed).
-// Peak memory is the process's; bench/scale measures it from outside. Runs
-// with transparent huge pages, as dewall does.
+// Peak memory is the process's; bench/scale measures it from outside. The
+// heap is glibc's default, as dewall's (GLIBC_TUNABLES=glibc.malloc.hugetlb=1
+// gives both transparent huge pages).
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
@@ -17,7 +18,6 @@
 #include <cstring>
 #include <vector>
 
-#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/point_reader.hpp"
 
 namespace {
@@ -36,9 +36,6 @@ void run(const std::vector<K::Point_3>& points, const char* mode, Extra... extra
 }  // namespace
 
 int main(int argc, char** argv) {
-  // The same heap as dewall's (huge_pages.hpp): the ratios compare the
-  // constructions, not the page size.
-  dewall::io::restart_with_huge_pages(argv);
   if (argc < 2 || argc > 3 || (argc == 3 && std::strcmp(argv[2], "--parallel") != 0)) {
     std::fprintf(stderr, "usage: bench_scale_cgal POINTS.dwpt [--parallel]\n");
     return 2;

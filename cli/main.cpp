@@ -11,7 +11,6 @@
 #include <string>
 
 #include "cli.hpp"
-#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/quote.hpp"
 
@@ -97,7 +96,6 @@ int run(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  dewall::io::restart_with_huge_pages(argv);
   // Past a file size limit (ulimit -f) a write fails with EFBIG, reported
   // like any write error (the old output kept), instead of SIGXFSZ killing
   // the process without a word and leaving the temporary behind.

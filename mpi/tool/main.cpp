@@ -49,7 +49,6 @@
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/dimensions.hpp"
-#include "dewall/io/huge_pages.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
@@ -709,9 +708,6 @@ int run(int argc, char** argv, int rank, int size) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Before MPI_Init (nothing is connected yet): huge pages for the heap, as
-  // `dewall` has them (the engine chases pointers through its cells).
-  dewall::io::restart_with_huge_pages(argv);
   MPI_Init(&argc, &argv);
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

@@ -182,31 +182,6 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
   }
 }
 
-TEST_CASE("command line: the restart for huge pages keeps the arguments and standard input", "[cli]") {
-  // dewall restarts itself with GLIBC_TUNABLES=glibc.malloc.hugetlb=1 (io/huge_pages.hpp)
-  // before it reads anything; =0 in the environment keeps it from restarting.
-  const dewall::test::Cli_in_directory cli("cli_test_huge_pages");
-  REQUIRE(cli("generate uniform 3000 --seed 4 -o p.txt").status == 0);
-  const auto restarted = cli.shell("cat p.txt | env -u GLIBC_TUNABLES $DEWALL triangulate - --threads 1 --stats");
-  const auto not_restarted =
-      cli.shell("cat p.txt | GLIBC_TUNABLES=glibc.malloc.hugetlb=0 $DEWALL triangulate - --threads 1 --stats");
-  REQUIRE(restarted.status == 0);
-  REQUIRE(not_restarted.status == 0);
-  CHECK(!restarted.out.empty());
-  CHECK(restarted.out == not_restarted.out);
-  CHECK(restarted.err.find("points=3000") != std::string::npos);
-  // Started through the dynamic loader, /proc/self/exe is the loader: no restart (it would run
-  // the loader on our arguments), the same output. (Not under AddressSanitizer: run that way,
-  // its leak checker reports the loader's own dl-open allocation.)
-#if !defined(__SANITIZE_ADDRESS__)
-  const auto through_loader = cli.shell(
-      "loader=/lib64/ld-linux-x86-64.so.2; [ -x $loader ] || loader=; "
-      "cat p.txt | env -u GLIBC_TUNABLES $loader $DEWALL triangulate - --threads 1");
-  CHECK(through_loader.status == 0);
-  CHECK(through_loader.out == restarted.out);
-#endif
-}
-
 TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
   const dewall::test::Cli_in_directory cli("cli_test_stream");
   using dewall::test::slurp;
