@@ -139,7 +139,7 @@ class Incremental_delaunay {
     points_.resize(count);
     input_.resize(count);
     // A gather from the whole input (a cache miss a point): in parallel.
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& range) {
+    parallel_ranges(count, 1 << 14, [&](const tbb::blocked_range<std::size_t>& range) {
       for (std::size_t k = range.begin(); k < range.end(); ++k) {
         points_[k].x = coordinates(order[k]);
         input_[k] = static_cast<Index>(id(order[k]));
@@ -337,6 +337,7 @@ class Incremental_delaunay {
   /// box). Out of line: inlined, it slowed the cavity search on inputs that
   /// never tie.
   [[gnu::noinline]] bool exact_zero_perturbed(const kernel::Sphere_points<D>& refs) const {
+    kernel::count(kernel::predicate_stats().side_of_sphere[D].perturbed);
     return kernel::perturbed_side_of_sphere<D>(
                refs,
                [&](const kernel::Orientation_points<D>& o) {

@@ -40,6 +40,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "dewall/kernel/floating_point.hpp"
 
@@ -146,11 +147,21 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
-/// Calls f(c) for c = 0 … chunks − 1, as parallel tasks when there are several.
+/// Calls f(c) for c = 0 … chunks − 1, as parallel tasks when there are
+/// several. Isolated, as parallel_ranges.
 template <class F>
 void for_each_chunk(std::size_t chunks, F&& f) {
   if (chunks == 1) f(std::size_t{0});
-  else tbb::parallel_for(std::size_t{0}, chunks, f);
+  else tbb::this_task_arena::isolate([&] { tbb::parallel_for(std::size_t{0}, chunks, f); });
+}
+
+/// Calls f(range) on ranges of [0, count) of about `grain` indices, as
+/// parallel tasks. Isolated: while it waits for them, the calling thread takes
+/// no unrelated outer task (a hybrid's region builds inside one).
+template <class F>
+void parallel_ranges(std::size_t count, std::size_t grain, F&& f) {
+  tbb::this_task_arena::isolate(
+      [&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, grain), f); });
 }
 
 /// Sorts `items` by their first member, stably (least significant digit
@@ -231,7 +242,7 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
   for (std::size_t n = count; n > smallest_round && last < 15; n /= 4) ++last;
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
   // Each key is a function of its point and index alone: computed in parallel.
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, count, 1 << 14), [&](const tbb::blocked_range<std::size_t>& range) {
+  parallel_ranges(count, 1 << 14, [&](const tbb::blocked_range<std::size_t>& range) {
     // TBB runs tasks in the environment its arena recorded, not the caller's:
     // without the guard the order would depend on it (the review of 2026-11-26).
     const kernel::Fp_environment_guard guard;

@@ -466,7 +466,8 @@ template <class Recipe, int D>
 
 /// The cascade from stage 1's decision on, for a caller that has computed
 /// the matrix m the recipe makes of p and det = determinant<double>(m) (the
-/// same operations as stage 1's, so the same double): what filtered(p)
+/// same operations as stage 1's, so stage 1's error bound holds for det):
+/// what filtered(p)
 /// answers, without computing them again. Out of line: the static filter's
 /// callers reach it only where its bound failed.
 template <class Recipe, int D>

@@ -175,7 +175,12 @@ class Static_filter_d {
   [[gnu::always_inline]] std::optional<Sign> decide(const Point_refs<D, N>& p, double bound) const {
     if (!valid_) return std::nullopt;
     const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
-    const double det = determinant<double, Recipe::size>(m);
+    return static_decision<Recipe>(determinant<double, Recipe::size>(m), bound);
+  }
+  /// The static bound's decision on the computed determinant det (the
+  /// derivation above), and on a lattice (exact_) every sign, zero included.
+  template <class Recipe>
+  [[gnu::always_inline]] std::optional<Sign> static_decision(double det, double bound) const {
     if (det > bound) return Recipe::sign_adjust;
     if (det < -bound) return -Recipe::sign_adjust;
     if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
@@ -191,9 +196,7 @@ class Static_filter_d {
     }
     const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
     const double det = determinant<double, Recipe::size>(m);
-    if (det > sphere_bound_) return Recipe::sign_adjust;
-    if (det < -sphere_bound_) return -Recipe::sign_adjust;
-    if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
+    if (const auto s = static_decision<Recipe>(det, sphere_bound_)) return s;
     if constexpr (Every_stage) return stages::filtered_after_static<Recipe, D>(p, m, det);
     else return stages::filter_decision<Recipe, D>(p, m, [det] { return det; }, nullptr);
   }
