@@ -370,7 +370,8 @@ class Incremental_delaunay {
   /// of q and the facet would be flat) and must go too; if it stays, the facet
   /// stays a hull facet (q does not lie beyond it). This is the answer CGAL's
   /// perturbed in-circle test on the facet gives, by that same argument.
-  bool in_conflict(std::size_t c, const Point& q) const {
+  /// Inlined into the searches (GCC called it: uniform 10^6 −1 %).
+  [[gnu::always_inline]] bool in_conflict(std::size_t c, const Point& q) const {
     const int i = infinite_position(c);
     if (i > D) return sphere_holds(c, q);
     const kernel::Sign s = orientation(c, i, &q);
@@ -882,16 +883,22 @@ class Incremental_delaunay {
         return glue_star_directed(w);
       }
       std::uint32_t m = 1;  // 0: the infinite vertex
+      // Whether x is new or seen has no pattern a branch predictor could
+      // learn (a boundary vertex is met about five times, the first time
+      // new): so the answer is selected by masks, not by a branch (GCC made
+      // conditional expressions branches again; measured: uniform 10^6 −3 %).
+      // Probing on only passes a slot another vertex holds.
       auto local = [&](Index x) -> std::uint32_t {
         if (x == infinite) return 0;
-        for (std::uint32_t i = (x * 0x9e3779b9u) >> (32 - local_bits);; i = (i + 1) & (local_table_size - 1)) {
-          Local& l = w.local[i];
-          if (l.stamp != stamp) {
-            l = {x, stamp, m};
-            return m++;
-          }
-          if (l.vertex == x) return l.number;
-        }
+        std::uint32_t i = (x * 0x9e3779b9u) >> (32 - local_bits);
+        while ((w.local[i].stamp == stamp) & (w.local[i].vertex != x)) i = (i + 1) & (local_table_size - 1);
+        Local& l = w.local[i];
+        const std::uint32_t fresh = l.stamp != stamp, keep = fresh - 1;  // keep: all ones when seen
+        l.vertex = x;
+        l.stamp = stamp;
+        l.number = (l.number & keep) | (m & ~keep);
+        m += fresh;
+        return l.number;
       };
       // w.keys[b·D + e]: the directed key of new cell b's e-th facet through p
       // (star_facets[facet][e]), and of its reverse.
