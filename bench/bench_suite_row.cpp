@@ -14,7 +14,7 @@
 //     spacing h of the circumsphere of a sample of its cells (below);
 //  3. timed, best of R (fewer once a tool's runs of the row have taken
 //     --repeat-budget seconds: small rows repeat, large ones run once): CGAL (Delaunay_triangulation_2/_3 with Epick, dD
-//     Delaunay_triangulation with Epick_d in 4D), then dewall with
+//     Delaunay_triangulation with Epick_d in 4D and 5D), then dewall with
 //     Engine::incremental, Engine::automatic, then Engine::dewall, all with parallel_depth 0;
 //     each dewall result is compared with the reference as a set of sorted
 //     index tuples right after its run (untimed).
@@ -88,7 +88,7 @@ struct Row_options {
 [[noreturn]] void usage(const std::string& why) {
   std::fprintf(stderr,
                "bench_suite_row: %s\n"
-               "usage: bench_suite_row --kind K --points N --dim 2|3|4 [--seed S] [--noise X] [--planes P]\n"
+               "usage: bench_suite_row --kind K --points N --dim 2|3|4|5 [--seed S] [--noise X] [--planes P]\n"
                "                       [--tools cgal,incremental,auto,dewall] [--repeat R] [--tool-limit SEC]\n"
                "                       [--floor-sample M] [--clock wall|cpu] [--repeat-budget SEC]\nK: %s\n",
                why.c_str(), dewall::io::point_kind_names().c_str());
@@ -161,7 +161,7 @@ Row_options parse_options(int argc, char** argv) {
     }
   }
   if (!have_kind || !have_points || !have_dim) usage("--kind, --points and --dim are required");
-  if (o.dim < 2 || o.dim > 4) usage("--dim must be 2, 3 or 4");
+  if (o.dim < 2 || o.dim > 5) usage("--dim must be 2 … 5");
   if (o.repeat < 1 || o.repeat > 100) usage("--repeat must be 1 … 100");
   return o;
 }
@@ -587,7 +587,10 @@ int main(int argc, char** argv) {
   }
   int status = 1;
   try {
-    status = o.dim == 2 ? run<2>(o, report) : o.dim == 3 ? run<3>(o, report) : run<4>(o, report);
+    status = o.dim == 2   ? run<2>(o, report)
+             : o.dim == 3 ? run<3>(o, report)
+             : o.dim == 4 ? run<4>(o, report)
+                          : run<5>(o, report);
   } catch (const std::invalid_argument& e) {  // from the generator: bad noise for the kind, too few points
     std::fprintf(stderr, "bench_suite_row: %s\n", e.what());
     status = 2;
