@@ -150,6 +150,15 @@ TEST_CASE("incremental: the BRIO order is a permutation, the same on every run",
     for (std::size_t i = 0; i < n; ++i) CHECK(sorted[i] == i);
     CHECK(dewall::detail::brio_order<3>(n, coords) == order);
   }
+  // 6D: keys of more than 32 bits (at 5,000 points 6·5 + 4), the (key, index) pairs' path.
+  {
+    const auto points = dewall::test::uniform<6>(5000, rng);
+    auto coords = [&](std::size_t i) -> const std::array<double, 6>& { return points[i].x; };
+    const auto order = dewall::detail::brio_order<6>(points.size(), coords);
+    auto sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i) CHECK(sorted[i] == i);
+  }
   // Degenerate extents: all points on one axis line, and coordinates near ±2^1023.
   std::vector<Point3> line(100), extreme(100);
   for (std::size_t i = 0; i < 100; ++i) {
@@ -180,6 +189,21 @@ TEST_CASE("incremental: the radix sort is std::stable_sort, and the order the sa
         tbb::task_arena(threads).execute([&] { dewall::detail::radix_sort(sorted, key_bits); });
         CHECK(sorted == expected);
       }
+      // Key and index packed in one word (brio_order's keys of up to 32 bits):
+      // sorted by the key bits alone, the same order.
+      if (key_bits <= 32) {
+        std::vector<std::uint64_t> words(n);
+        for (std::size_t i = 0; i < n; ++i) words[i] = items[i].first << 32 | items[i].second;
+        for (const int threads : {1, 2}) {
+          auto sorted = words;
+          tbb::task_arena(threads).execute(
+              [&] { dewall::detail::radix_sort(sorted, 32, 32 + key_bits, [](std::uint64_t w) { return w; }); });
+          bool same = sorted.size() == expected.size();
+          for (std::size_t i = 0; same && i < n; ++i)
+            same = sorted[i] >> 32 == expected[i].first && static_cast<std::uint32_t>(sorted[i]) == expected[i].second;
+          CHECK(same);
+        }
+      }
     }
   const auto points = dewall::test::uniform<3>(200000, rng);
   auto coords = [&](std::size_t i) -> const std::array<double, 3>& { return points[i].x; };
@@ -187,6 +211,17 @@ TEST_CASE("incremental: the radix sort is std::stable_sort, and the order the sa
   tbb::task_arena(1).execute([&] { one = dewall::detail::brio_order<3>(points.size(), coords); });
   tbb::task_arena(2).execute([&] { two = dewall::detail::brio_order<3>(points.size(), coords); });
   CHECK(one == two);
+  // 2D keys of 10^5 points fit one word with the index (the packed path).
+  const auto plane = dewall::test::uniform<2>(100000, rng);
+  auto plane_coords = [&](std::size_t i) -> const std::array<double, 2>& { return plane[i].x; };
+  tbb::task_arena(1).execute([&] { one = dewall::detail::brio_order<2>(plane.size(), plane_coords); });
+  tbb::task_arena(2).execute([&] { two = dewall::detail::brio_order<2>(plane.size(), plane_coords); });
+  CHECK(one == two);
+  std::vector<std::uint32_t> sorted_order = one;
+  std::sort(sorted_order.begin(), sorted_order.end());
+  bool permutation = true;
+  for (std::size_t k = 0; k < sorted_order.size(); ++k) permutation = permutation && sorted_order[k] == k;
+  CHECK(permutation);
 }
 
 TEST_CASE("incremental: the structure is valid after every insertion", "[incremental]") {
