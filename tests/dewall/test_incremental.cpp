@@ -186,7 +186,9 @@ TEST_CASE("incremental: the radix sort is std::stable_sort, and the order the sa
       std::stable_sort(expected.begin(), expected.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
       for (const int threads : {1, 2}) {
         auto sorted = items;
-        tbb::task_arena(threads).execute([&] { dewall::detail::radix_sort(sorted, key_bits); });
+        tbb::task_arena(threads).execute([&] {
+          dewall::detail::radix_sort(sorted, 0, key_bits, [](const auto& item) { return item.first; });
+        });
         CHECK(sorted == expected);
       }
       // Key and index packed in one word (brio_order's keys of up to 32 bits):

@@ -199,10 +199,6 @@ void radix_sort(std::vector<Item>& items, int first_bit, int end_bit, Key_of&& k
     items.swap(other);
   }
 }
-/// (key, index) pairs by their keys' bits 0 … key_bits − 1.
-inline void radix_sort(std::vector<std::pair<std::uint64_t, std::uint32_t>>& items, int key_bits) {
-  radix_sort(items, 0, key_bits, [](const std::pair<std::uint64_t, std::uint32_t>& item) { return item.first; });
-}
 
 /// The smallest box [lo, hi] holding `count` points (coords(i): point i's
 /// coordinates); lo = +inf, hi = −inf when there are none.
@@ -238,7 +234,7 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
   // Grid cells of the Hilbert order: 2^bits a side, at least 4 per point
   // spacing of uniform points (2^(D·(bits − 2)) ≥ count). Finer grids only
   // split cells that hold no two points, and each level costs the keys and
-  // the radix sort (uniform 10^6: 3 passes instead of 5 in 3D, 4 in 2D).
+  // the radix sort (uniform 10^6: 3 passes instead of 5 in 3D and of 4 in 2D).
   constexpr int max_bits = 60 / D < 16 ? 60 / D : 16;
   int bits = 2;
   while (bits < max_bits && (std::uint64_t{1} << (D * (bits - 2))) < count) ++bits;
@@ -272,28 +268,26 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
   };
   const int key_bits = round_shift + 4;
   std::vector<std::uint32_t> order(count);
-  // TBB runs tasks in the environment its arena recorded, not the caller's:
-  // without the guard in each range the order would depend on it (the
-  // review of 2026-11-26).
-  if (key_bits <= 32) {
-    // Key and index in one word (key above): half the memory each radix
-    // pass moves; sorting by the key alone, stably, keeps the same order.
-    std::vector<std::uint64_t> keyed(count);
+  // Keys in parallel, sorted by their key_bits bits from first_bit on, then
+  // the indices read off. TBB runs tasks in the environment its arena
+  // recorded, not the caller's: without the guard in each range the order
+  // would depend on it (the review of 2026-11-26).
+  const auto sort_keys = [&](auto item_of, int first_bit, auto key_of, auto index_of) {
+    std::vector<decltype(item_of(std::size_t{0}))> keyed(count);
     parallel_ranges(count, 1 << 14, [&](const tbb::blocked_range<std::size_t>& range) {
       const kernel::Fp_environment_guard guard;
-      for (std::size_t i = range.begin(); i < range.end(); ++i) keyed[i] = key_of_point(i) << 32 | i;
+      for (std::size_t i = range.begin(); i < range.end(); ++i) keyed[i] = item_of(i);
     });
-    radix_sort(keyed, 32, 32 + key_bits, [](std::uint64_t item) { return item; });
-    for (std::size_t k = 0; k < count; ++k) order[k] = static_cast<std::uint32_t>(keyed[k]);
-  } else {
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(count);
-    parallel_ranges(count, 1 << 14, [&](const tbb::blocked_range<std::size_t>& range) {
-      const kernel::Fp_environment_guard guard;
-      for (std::size_t i = range.begin(); i < range.end(); ++i) keyed[i] = {key_of_point(i), static_cast<std::uint32_t>(i)};
-    });
-    radix_sort(keyed, key_bits);
-    for (std::size_t k = 0; k < count; ++k) order[k] = keyed[k].second;
-  }
+    radix_sort(keyed, first_bit, first_bit + key_bits, key_of);
+    for (std::size_t k = 0; k < count; ++k) order[k] = index_of(keyed[k]);
+  };
+  if (key_bits <= 32)  // key and index in one word (key above): half the memory each pass moves
+    sort_keys([&](std::size_t i) { return key_of_point(i) << 32 | i; }, 32, [](std::uint64_t w) { return w; },
+              [](std::uint64_t w) { return static_cast<std::uint32_t>(w); });
+  else
+    sort_keys([&](std::size_t i) { return std::pair{key_of_point(i), static_cast<std::uint32_t>(i)}; }, 0,
+              [](const std::pair<std::uint64_t, std::uint32_t>& item) { return item.first; },
+              [](const std::pair<std::uint64_t, std::uint32_t>& item) { return item.second; });
   return order;
 }
 
