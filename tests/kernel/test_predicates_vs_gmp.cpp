@@ -283,22 +283,30 @@ TEMPLATE_TEST_CASE_SIG("every predicate stage agrees with GMP rationals", "[gmp]
   CHECK(wide_zero > 0);
 }
 
-TEST_CASE("Wide_integer: its operations agree with GMP modulo 2^(64 L)", "[predicates]") {
+TEST_CASE("Wide_integer: sums of signed products agree with GMP modulo 2^(64 L)", "[predicates]") {
+  using dewall::kernel::Signed_magnitude;
+  using dewall::kernel::Wide_integer;
   Rng rng(20261125);
-  const auto check_width = [&]<int L>(std::integral_constant<int, L>) {
-    using Wide = dewall::kernel::Wide_integer<L>;
+  std::uniform_int_distribution<std::uint64_t> limb;
+  std::uniform_int_distribution<int> coin(0, 3);
+  // A random magnitude of M limbs (often with zero or all-ones limbs: carries), its sign a coin.
+  const auto make = [&]<int M>(std::integral_constant<int, M>, mpz_class& z) {
+    Signed_magnitude<M> v;
+    z = 0;
+    for (int i = M - 1; i >= 0; --i) {
+      const int kind = coin(rng);
+      v.limb[static_cast<std::size_t>(i)] = kind == 0 ? 0 : kind == 1 ? ~std::uint64_t{0} : limb(rng);
+      z = (z << 64) + mpz_class(static_cast<unsigned long>(v.limb[static_cast<std::size_t>(i)]));
+    }
+    if (coin(rng) < 2) {
+      v.negative = ~std::uint64_t{0};
+      z = -z;
+    }
+    return v;
+  };
+  const auto check_width = [&]<int L, int A, int B>(std::integral_constant<int, L>, std::integral_constant<int, A> a_limbs,
+                                                    std::integral_constant<int, B> b_limbs) {
     const mpz_class modulus = mpz_class(1) << (64 * L);
-    std::uniform_int_distribution<std::int64_t> limb(std::numeric_limits<std::int64_t>::min(),
-                                                     std::numeric_limits<std::int64_t>::max());
-    std::uniform_int_distribution<int> coin(0, 3);
-    // A random signed 128-bit value, often small (carries and borrows across zero).
-    const auto make = [&](Wide& w, mpz_class& z) {
-      const std::int64_t high = coin(rng) == 0 ? 0 : coin(rng) == 0 ? -1 : limb(rng);
-      const auto low = static_cast<std::uint64_t>(limb(rng));
-      const auto v = static_cast<dewall::kernel::Int128>(static_cast<dewall::kernel::Uint128>(high) << 64 | low);
-      w = Wide::of(v);
-      z = (mpz_class(static_cast<long>(high)) << 64) + mpz_class(static_cast<unsigned long>(low));
-    };
     // The two's-complement reading of z mod 2^(64L).
     const auto reduce = [&](mpz_class z) {
       z %= modulus;
@@ -306,33 +314,45 @@ TEST_CASE("Wide_integer: its operations agree with GMP modulo 2^(64 L)", "[predi
       if (z >= modulus / 2) z -= modulus;
       return z;
     };
-    const auto same = [&](const auto& w, const mpz_class& z) {
-      const mpz_class r = reduce(z);
-      const int bits = r == 0 ? 0 : static_cast<int>(mpz_sizeinbase(mpz_class(abs(r)).get_mpz_t(), 2));
-      return w.sign() == sgn(r) && w.magnitude_bits() == bits;
-    };
     for (int trial = 0; trial < 2000; ++trial) {
-      Wide a, b, c;
-      mpz_class x, y, z;
-      make(a, x);
-      make(b, y);
-      make(c, z);
-      REQUIRE(same(a, x));
-      CHECK(same(a + b, x + y));
-      CHECK(same(a - b, x - y));
-      CHECK(same(-a, -x));
-      CHECK(same(a.times(7).times(~std::uint64_t{0}) - c, x * 7 * mpz_class(~0ul) - z));  // wraps for L = 2
-      const auto m = static_cast<std::uint64_t>(limb(rng));
-      CHECK(same(a.times(m), x * mpz_class(static_cast<unsigned long>(m))));
-      CHECK(same(a.shifted_limb(), x << 64));
-      const auto wider = dewall::kernel::Wide_integer<L + 2>::extended(a - b);
-      CHECK(wider.sign() == sgn(reduce(x - y)));
-      CHECK(wider.magnitude_bits() == (a - b).magnitude_bits());
+      Wide_integer<L> sum;
+      mpz_class expected = 0;
+      for (int term = 0; term < 4; ++term) {
+        mpz_class x, y;
+        const auto a = make(a_limbs, x);
+        const auto b = make(b_limbs, y);
+        const bool negate = coin(rng) < 2;
+        sum.add_product(a, b, negate);
+        expected += negate ? mpz_class(-x * y) : mpz_class(x * y);
+      }
+      const mpz_class value = reduce(expected);
+      REQUIRE(sum.sign() == sgn(value));
+      if (value == -modulus / 2) continue;  // no magnitude in L limbs' two's complement
+      const auto magnitude = sum.signed_magnitude();
+      mpz_class read = 0;
+      for (int i = L - 1; i >= 0; --i)
+        read = (read << 64) + mpz_class(static_cast<unsigned long>(magnitude.limb[static_cast<std::size_t>(i)]));
+      CHECK(read == abs(value));
+      CHECK((magnitude.negative != 0) == (value < 0));
     }
   };
-  check_width(std::integral_constant<int, 2>{});
-  check_width(std::integral_constant<int, 3>{});
-  check_width(std::integral_constant<int, 5>{});
+  using std::integral_constant;
+  check_width(integral_constant<int, 1>{}, integral_constant<int, 1>{}, integral_constant<int, 1>{});
+  check_width(integral_constant<int, 3>{}, integral_constant<int, 2>{}, integral_constant<int, 1>{});  // wider: exact
+  check_width(integral_constant<int, 3>{}, integral_constant<int, 3>{}, integral_constant<int, 1>{});  // wraps
+  check_width(integral_constant<int, 5>{}, integral_constant<int, 3>{}, integral_constant<int, 2>{});
+  check_width(integral_constant<int, 4>{}, integral_constant<int, 3>{}, integral_constant<int, 2>{});  // wraps
+  // The 64- and 128-bit entries' magnitudes.
+  for (const std::int64_t v : {std::int64_t{0}, std::int64_t{-1}, std::int64_t{5}, std::int64_t{-(std::int64_t{1} << 61)}}) {
+    const auto m = dewall::kernel::signed_magnitude(v);
+    CHECK(mpz_class(static_cast<unsigned long>(m.limb[0])) == abs(mpz_class(static_cast<long>(v))));
+    CHECK((m.negative != 0) == (v < 0));
+  }
+  const dewall::kernel::Int128 big = -(dewall::kernel::Int128{3} << 100);
+  const auto m = dewall::kernel::signed_magnitude(big);
+  CHECK(m.negative == ~std::uint64_t{0});
+  CHECK(m.limb[1] == std::uint64_t{3} << 36);
+  CHECK(m.limb[0] == 0);
 }
 
 // The walls' point set scales every input by a power of two (to the unit box),

@@ -9,7 +9,8 @@
 // integers throughout) was slower still: the cost is in the widths. Here the
 // minors grow one column at a time, so the minors of r columns are integers
 // of just the r·62 + log2(r!) bits they can reach: 64 bits, then 128, then a
-// few 64-bit limbs; each product is a limb vector times one 64-bit entry.
+// few 64-bit limbs; each product is a magnitude's limbs times one 64-bit
+// entry (two for the lifted column), its sign a mask, not a branch.
 //
 // Why modular limb arithmetic is exact: reduction modulo 2^n is a ring
 // homomorphism, so a value computed with every operation wrapping modulo 2^n
@@ -33,81 +34,54 @@ namespace dewall::kernel {
 __extension__ typedef __int128 Int128;
 __extension__ typedef unsigned __int128 Uint128;
 
-/// An integer modulo 2^(64·L), read in two's complement.
+/// An integer as its magnitude's limbs and a sign mask (all ones when
+/// negative, else 0): the form every product below is taken in, so that a
+/// product costs one 64-bit multiplication per pair of magnitude limbs, and
+/// its sign enters the sum as a mask instead of a branch (the signs are the
+/// data's: the branch on them, in the two's-complement products this
+/// replaced, was mispredicted about half the time; 196 → 140 ns a 3D sphere
+/// test, −9 % of a triangulation of points on a sphere).
+template <int L>
+struct Signed_magnitude {
+  std::array<std::uint64_t, L> limb{};
+  std::uint64_t negative = 0;
+};
+
+/// An integer modulo 2^(64·L), read in two's complement: the sums of products.
 template <int L>
 class Wide_integer {
   static_assert(L >= 1);
-  template <int>
-  friend class Wide_integer;
 
  public:
-  static constexpr int bits = 64 * L;
-
   Wide_integer() = default;
-  /// v, sign-extended (v's value is kept when L ≥ 2).
-  static Wide_integer of(Int128 v) {
-    Wide_integer r;
-    const auto u = static_cast<Uint128>(v);
-    const std::uint64_t fill = v < 0 ? ~std::uint64_t{0} : 0;
-    for (int i = 0; i < L; ++i)
-      r.limb_[static_cast<std::size_t>(i)] = i == 0 ? static_cast<std::uint64_t>(u)
-                                             : i == 1 ? static_cast<std::uint64_t>(u >> 64)
-                                                      : fill;
-    return r;
-  }
-  /// v, sign-extended to L limbs (M ≤ L: the value is kept).
-  template <int M>
-  static Wide_integer extended(const Wide_integer<M>& v) {
-    static_assert(M <= L);
-    Wide_integer r;
-    const std::uint64_t fill = v.negative() ? ~std::uint64_t{0} : 0;
-    for (int i = 0; i < L; ++i) r.limb_[static_cast<std::size_t>(i)] = i < M ? v.limb_[static_cast<std::size_t>(i)] : fill;
-    return r;
-  }
 
-  friend Wide_integer operator+(const Wide_integer& a, const Wide_integer& b) {
-    Wide_integer r;
-    std::uint64_t carry = 0;
+  /// this += (−1)^s·|a|·|b| modulo 2^(64L), s the sign of a·b, flipped when
+  /// `negate`: the product's limbs (as many as this has), then this + (p XOR
+  /// mask) + (mask AND 1), which is this − p when the mask is all ones.
+  template <int A, int B>
+  [[gnu::always_inline]] void add_product(const Signed_magnitude<A>& a, const Signed_magnitude<B>& b, bool negate) {
+    // b's limbs outermost (b is the entry: one limb, or two for the lifted column).
+    std::array<std::uint64_t, L> p{};
+    for (int j = 0; j < B; ++j) {
+      std::uint64_t carry = 0;
+      for (int i = 0; i < A && i + j < L; ++i) {
+        const auto k = static_cast<std::size_t>(i + j);
+        const Uint128 t = static_cast<Uint128>(a.limb[static_cast<std::size_t>(i)]) * b.limb[static_cast<std::size_t>(j)] +
+                          p[k] + carry;
+        p[k] = static_cast<std::uint64_t>(t);
+        carry = static_cast<std::uint64_t>(t >> 64);
+      }
+      if (A + j < L) p[static_cast<std::size_t>(A + j)] = carry;
+    }
+    const std::uint64_t mask = a.negative ^ b.negative ^ (negate ? ~std::uint64_t{0} : 0);
+    std::uint64_t carry = mask & 1;
     for (int i = 0; i < L; ++i) {
       const auto k = static_cast<std::size_t>(i);
-      const Uint128 t = static_cast<Uint128>(a.limb_[k]) + b.limb_[k] + carry;
-      r.limb_[k] = static_cast<std::uint64_t>(t);
+      const Uint128 t = static_cast<Uint128>(limb_[k]) + (p[k] ^ mask) + carry;
+      limb_[k] = static_cast<std::uint64_t>(t);
       carry = static_cast<std::uint64_t>(t >> 64);
     }
-    return r;
   }
-  friend Wide_integer operator-(const Wide_integer& a, const Wide_integer& b) {
-    Wide_integer r;
-    std::uint64_t borrow = 0;  // 0 or 1
-    for (int i = 0; i < L; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const Uint128 t = static_cast<Uint128>(a.limb_[k]) - b.limb_[k] - borrow;
-      r.limb_[k] = static_cast<std::uint64_t>(t);
-      borrow = static_cast<std::uint64_t>(t >> 64) & 1;  // the difference wrapped: a borrow
-    }
-    return r;
-  }
-  Wide_integer operator-() const { return Wide_integer{} - *this; }
-  /// this · m (m read as unsigned), modulo 2^bits: L products.
-  Wide_integer times(std::uint64_t m) const {
-    Wide_integer r;
-    std::uint64_t carry = 0;
-    for (int i = 0; i < L; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      const Uint128 t = static_cast<Uint128>(limb_[k]) * m + carry;
-      r.limb_[k] = static_cast<std::uint64_t>(t);
-      carry = static_cast<std::uint64_t>(t >> 64);
-    }
-    return r;
-  }
-  /// this · 2^64, modulo 2^bits.
-  Wide_integer shifted_limb() const {
-    Wide_integer r;
-    for (int i = L - 1; i > 0; --i) r.limb_[static_cast<std::size_t>(i)] = limb_[static_cast<std::size_t>(i - 1)];
-    return r;
-  }
-  Wide_integer& operator+=(const Wide_integer& b) { return *this = *this + b; }
-  Wide_integer& operator-=(const Wide_integer& b) { return *this = *this - b; }
 
   bool negative() const { return (limb_[L - 1] >> 63) != 0; }
   /// -1, 0, +1 for the two's-complement value.
@@ -117,18 +91,36 @@ class Wide_integer {
       if (x != 0) return 1;
     return 0;
   }
-  /// Bits of |value| (the value not −2^(bits−1)).
-  int magnitude_bits() const {
-    const Wide_integer m = negative() ? -*this : *this;
-    for (int i = L - 1; i >= 0; --i)
-      if (m.limb_[static_cast<std::size_t>(i)] != 0)
-        return 64 * i + static_cast<int>(std::bit_width(m.limb_[static_cast<std::size_t>(i)]));
-    return 0;
+  /// |value| and its sign, without a branch: (v XOR mask) − mask, as
+  /// (v XOR mask) + (mask AND 1). \pre value ≠ −2^(64L−1).
+  Signed_magnitude<L> signed_magnitude() const {
+    Signed_magnitude<L> r;
+    r.negative = negative() ? ~std::uint64_t{0} : 0;
+    std::uint64_t carry = r.negative & 1;
+    for (int i = 0; i < L; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const Uint128 t = static_cast<Uint128>(limb_[k] ^ r.negative) + carry;
+      r.limb[k] = static_cast<std::uint64_t>(t);
+      carry = static_cast<std::uint64_t>(t >> 64);
+    }
+    return r;
   }
 
  private:
   std::array<std::uint64_t, L> limb_{};
 };
+
+/// v as a magnitude and a sign mask.
+inline Signed_magnitude<1> signed_magnitude(std::int64_t v) {
+  const auto mask = static_cast<std::uint64_t>(v >> 63);
+  return {{(static_cast<std::uint64_t>(v) ^ mask) - mask}, mask};
+}
+inline Signed_magnitude<2> signed_magnitude(Int128 v) {
+  const auto mask = static_cast<Uint128>(v >> 127);
+  const Uint128 magnitude = (static_cast<Uint128>(v) ^ mask) - mask;
+  return {{static_cast<std::uint64_t>(magnitude), static_cast<std::uint64_t>(magnitude >> 64)},
+          static_cast<std::uint64_t>(mask)};
+}
 
 namespace detail {
 
@@ -145,26 +137,6 @@ inline constexpr int entry_bits = 62;
 constexpr int minor_limbs(int r, bool last_lifted) {
   const int magnitude = last_lifted ? entry_bits * (r - 1) + 127 + factorial_bits(r) : entry_bits * r + factorial_bits(r);
   return (magnitude + 1 + 63) / 64;
-}
-
-/// acc ± e·m in acc's width, e a signed 64-bit entry, m a narrower minor.
-template <int Lr, int Lm>
-[[gnu::always_inline]] inline void add_product(Wide_integer<Lr>& acc, std::int64_t e, const Wide_integer<Lm>& m,
-                                               bool negate) {
-  const auto magnitude = e < 0 ? 0 - static_cast<std::uint64_t>(e) : static_cast<std::uint64_t>(e);
-  const Wide_integer<Lr> product = Wide_integer<Lr>::extended(m).times(magnitude);
-  if (negate != (e < 0)) acc -= product;
-  else acc += product;
-}
-/// The same with an entry 0 ≤ e < 2^127 (the lifted column).
-template <int Lr, int Lm>
-[[gnu::always_inline]] inline void add_product(Wide_integer<Lr>& acc, Uint128 e, const Wide_integer<Lm>& m,
-                                               bool negate) {
-  const auto wide = Wide_integer<Lr>::extended(m);
-  const Wide_integer<Lr> product =
-      wide.times(static_cast<std::uint64_t>(e)) + wide.times(static_cast<std::uint64_t>(e >> 64)).shifted_limb();
-  if (negate) acc -= product;
-  else acc += product;
 }
 
 }  // namespace detail
@@ -193,17 +165,26 @@ std::optional<int> small_entry_determinant_sign(const Matrix<Uint128, K>& a) {
 
   constexpr const auto& table = detail::minor_masks<K>;
   // Level 1 and 2 in native integers: |a·d − b·c| < 2^125.
-  std::array<Wide_integer<2>, (1 << K)> level2;
+  std::array<Signed_magnitude<2>, (1 << K)> level2;
   detail::static_for<table.level_begin[2], table.level_begin[3]>([&](auto t) {
     constexpr unsigned mask = table.masks[t];
     constexpr int i0 = std::countr_zero(mask), i1 = std::countr_zero(mask & (mask - 1));
-    level2[mask] = Wide_integer<2>::of(static_cast<Int128>(e[i0][0]) * e[i1][1] -
-                                       static_cast<Int128>(e[i1][0]) * e[i0][1]);
+    level2[mask] = signed_magnitude(static_cast<Int128>(e[i0][0]) * e[i1][1] -
+                                            static_cast<Int128>(e[i1][0]) * e[i0][1]);
   });
-  // Levels 3 … K, each in its own width.
+  // Levels 3 … K, each in its own width; the column's entries as magnitudes.
   const auto next_level = [&](auto r_constant, const auto& below) {
     constexpr int r = decltype(r_constant)::value;
     constexpr int limbs = detail::minor_limbs(r, lifted && r == K);
+    std::array<Signed_magnitude<lifted && r == K ? 2 : 1>, K> column;
+    for (int i = 0; i < K; ++i) {
+      if constexpr (lifted && r == K) {
+        const Uint128 v = a[static_cast<std::size_t>(i)][K - 1];
+        column[static_cast<std::size_t>(i)] = {{static_cast<std::uint64_t>(v), static_cast<std::uint64_t>(v >> 64)}, 0};
+      } else {
+        column[static_cast<std::size_t>(i)] = signed_magnitude(e[i][r - 1]);
+      }
+    }
     std::array<Wide_integer<limbs>, (1 << K)> level;
     detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
       constexpr unsigned mask = table.masks[t];
@@ -211,10 +192,7 @@ std::optional<int> small_entry_determinant_sign(const Matrix<Uint128, K>& a) {
       detail::static_for<0, K>([&](auto i) {
         if constexpr ((mask & (1u << i)) != 0) {
           constexpr bool negate = (std::popcount(mask & ((1u << i) - 1)) + r - 1) % 2 == 1;
-          if constexpr (lifted && r == K)
-            detail::add_product(sum, a[i][K - 1], below[mask & ~(1u << i)], negate);
-          else
-            detail::add_product(sum, e[i][r - 1], below[mask & ~(1u << i)], negate);
+          sum.add_product(below[mask & ~(1u << i)], column[i], negate);
         }
       });
       level[mask] = sum;
@@ -222,14 +200,23 @@ std::optional<int> small_entry_determinant_sign(const Matrix<Uint128, K>& a) {
     return level;
   };
   if constexpr (K == 2) {
-    return level2[3].sign();
+    return level2[3].limb[0] == 0 && level2[3].limb[1] == 0 ? 0 : level2[3].negative ? -1 : 1;
   } else {
     // Unrolled K − 2 levels, each returning the next width's array.
     auto expand = [&](auto self, auto r_constant, const auto& below) -> int {
       constexpr int r = decltype(r_constant)::value;
       const auto level = next_level(r_constant, below);
-      if constexpr (r == K) return level[(1u << K) - 1].sign();
-      else return self(self, std::integral_constant<int, r + 1>{}, level);
+      if constexpr (r == K) {
+        return level[(1u << K) - 1].sign();
+      } else {
+        constexpr int limbs = detail::minor_limbs(r, false);
+        std::array<Signed_magnitude<limbs>, (1 << K)> magnitudes;
+        detail::static_for<table.level_begin[r], table.level_begin[r + 1]>([&](auto t) {
+          constexpr unsigned mask = table.masks[t];
+          magnitudes[mask] = level[mask].signed_magnitude();
+        });
+        return self(self, std::integral_constant<int, r + 1>{}, magnitudes);
+      }
     };
     return expand(expand, std::integral_constant<int, 3>{}, level2);
   }
