@@ -604,6 +604,75 @@ TEST_CASE("lowest_bit_exponent: x = odd · 2^e gives e, at every exponent", "[pr
 // in a box whose extent reaches the derivation's limit, it must decide every
 // call, the many exact zeros included, as GMP does; a larger box or a finer
 // unit must not be taken as exact.
+// Beyond the box-wide bound, the static filter still decides each call on
+// the lattice whose own entries satisfy it (static_filter.hpp, the
+// derivation's last part): small clusters anywhere in a wide box, the ties
+// among them included, exactly as GMP; wide calls only where GMP agrees.
+TEMPLATE_TEST_CASE_SIG("static filter on a wide lattice: each call's own bound, as GMP decides them",
+                       "[gmp][predicates]", ((int D), D), 2, 3) {
+  const auto seed = dewall::test::test_seed(0x1a771ce + D);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  const long half = 1L << 20;  // lifted extent D·2^42 units²: entries exact, the box-wide bound far exceeded
+  for (const int s : {-90, 0, 13}) {
+    INFO("unit 2^" << s);
+    std::array<double, D> lo, hi, too_wide;
+    lo.fill(0);
+    hi.fill(std::ldexp(static_cast<double>(2 * half), s));
+    too_wide.fill(std::ldexp(static_cast<double>(1L << 26), s));  // lifted D·2^52 units²: entries may round
+    const Static_filter_d<D> filter(lo, hi, s);
+    REQUIRE(filter.on_lattice());
+    REQUIRE(!filter.exact());
+    CHECK(!Static_filter_d<D>(lo, too_wide, s).on_lattice());
+    CHECK(!Static_filter_d<D>(lo, hi).on_lattice());
+    int decided_zero = 0, wide_ties_left = 0;
+    for (int c = 0; c < 400; ++c) {
+      std::vector<Point<D>> points;
+      const bool wide = c % 4 == 3;
+      switch (c % 4) {
+        case 0:  // on one small sphere: the sphere test is zero
+          points = dewall::test::cospherical_integer_points<D>(rng, D + 2, 40, 8);
+          break;
+        case 1:  // on one hyperplane: the orientation and the sphere test are zero
+          points = dewall::test::flat_integer_points<D>(rng, D + 2, D - 1, 10);
+          break;
+        case 2:  // a small cluster: ties of every kind
+          points = dewall::test::lattice_points<D>(rng, D + 2, -2, 2);
+          break;
+        default:  // on one sphere, often as wide as the box: neither bound holds
+          points = dewall::test::cospherical_integer_points<D>(rng, D + 2, half / 2, 8);
+      }
+      if (points.size() < D + 2) continue;
+      // The cluster moved to a random place of the box, on the lattice 2^s.
+      std::array<long, D> offset;
+      for (auto& o : offset) o = wide ? half : dewall::test::uniform_int(rng, 100, 2 * half - 100);
+      for (auto& p : points)
+        for (int j = 0; j < D; ++j) {
+          p.x[static_cast<std::size_t>(j)] =
+              std::ldexp(p[j] + static_cast<double>(offset[static_cast<std::size_t>(j)]), s);
+          REQUIRE((p[j] >= lo[static_cast<std::size_t>(j)] && p[j] <= hi[static_cast<std::size_t>(j)]));
+        }
+      const Call_points<D> call(points);
+      const auto& [simplex, orientation_refs, sphere_refs] = call;
+      INFO(dewall::test::format_points<D>(points));
+      const int expected_orientation = dewall::test::gmp_orientation<D>(simplex);
+      const int expected_sphere = dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]);
+      const auto orientation = filter.orientation(orientation_refs);
+      const auto sphere = filter.side_of_oriented_sphere(sphere_refs);
+      if (!wide) {
+        REQUIRE(orientation.has_value());
+        REQUIRE(sphere.has_value());
+      }
+      if (orientation) CHECK(*orientation == expected_orientation);
+      if (sphere) CHECK(static_cast<int>(*sphere) == expected_sphere);
+      decided_zero += (orientation && *orientation == ZERO) + (sphere && *sphere == ZERO);
+      wide_ties_left += wide && expected_sphere == 0 && !sphere;
+    }
+    CHECK(decided_zero > 100);   // the ties were reached, and decided
+    CHECK(wide_ties_left > 20);  // and the call's bound does limit: wide ties go on to the cascade
+  }
+}
+
 TEMPLATE_TEST_CASE_SIG("static filter on a lattice: exact up to its bound, as GMP decides them", "[gmp][predicates]",
                        ((int D), D), 2, 3) {
   const auto seed = dewall::test::test_seed(0x5ea71c + D);

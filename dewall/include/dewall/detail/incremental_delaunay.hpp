@@ -182,7 +182,7 @@ class Incremental_delaunay {
   void insert_more(std::size_t count, Coordinates&& coordinates, Id&& id) {
     if (count == 0) return;
     const std::vector<std::uint32_t> order = brio_order<D>(count, coordinates);
-    if (static_filter_.exact()) static_filter_.admit_lattice(lattice_unit(count, coordinates));
+    if (static_filter_.on_lattice()) static_filter_.admit_lattice(lattice_unit(count, coordinates));
     const std::size_t first = points_.size();
     points_.resize(first + count);
     input_.resize(first + count);
