@@ -235,8 +235,8 @@ void run(Byte_source& in) {
   }
 
   // Property 7: zoned insertion (Incremental_delaunay::insert_in_zones, which
-  // the library uses from 2^16 points on), every point after the first D + 1
-  // in zones: CGAL's cells, and on two threads the same cells in the same
+  // the library uses from 2^16 points on), every point after the first
+  // 256th (the BRIO sample's own sample) in zones: CGAL's cells, and on two threads the same cells in the same
   // slots as on one; zones that run out of slots or give up early, by the
   // input's size.
   std::vector<Point_d<D>> distinct;

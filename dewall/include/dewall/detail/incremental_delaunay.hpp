@@ -157,7 +157,7 @@ class Incremental_delaunay {
     // Volume data stays in the first reservation (reallocating it anyway
     // measured up to 25 % slower).
     const std::size_t sample = std::max<std::size_t>(count / 16, D + 1);
-    insert_vertices(D + 1, sample);
+    insert_sample(sample, box);
     if (sample < count) {
       const double per_point = static_cast<double>(cells_.size()) / static_cast<double>(sample);
       const double predicted = per_point * static_cast<double>(count);
@@ -605,6 +605,21 @@ class Incremental_delaunay {
   bool owns(const Worker& w, Index v) const {
     if (v == infinite) return D > 2;
     return zone_of(points_[v]) == w.zone;
+  }
+
+  /// Inserts points D + 1 … sample − 1 (after start): its own first sixteenth
+  /// one by one, the rest in zones when that is large enough for them (from
+  /// 2^20 points on: at 10^7 the sample's 625,000 points inserted on one core
+  /// were a ninth of a two-core run). The zones' result is the same for any
+  /// thread count (insert_in_zones), so the output stays the same bytes.
+  void insert_sample(std::size_t sample, const Box<D>& box) {
+    const std::size_t inner = std::max<std::size_t>(sample / 16, D + 1);
+    if (sample - inner >= zoned_insertion_threshold) {
+      insert_vertices(D + 1, inner);
+      insert_in_zones(inner, sample, box);
+    } else {
+      insert_vertices(D + 1, sample);
+    }
   }
 
   /// Step 3 for vertices first … last − 1 in rounds of two zones, each zone
