@@ -84,9 +84,11 @@ using Simplex_rows_sink = std::function<void(std::span<const std::uint32_t>)>;
 /// `options` (default: automatic). The simplices go to Run::simplices, or,
 /// when `stream` is given, to it as they are built (options.stream); a
 /// streamed run writes no points, so the table's coordinates are then
-/// released once converted (10^8 points: 2.4 GB).
+/// released once converted (10^8 points: 2.4 GB), and so they are when
+/// `keep_coordinates` is false (a caller that writes no points either).
 /// \throws dewall::Invalid_input (points that cannot be triangulated), Usage_error (dimension).
-Run triangulate_any(io::Point_table& table, const Options& options = {}, const Simplex_rows_sink* stream = nullptr);
+Run triangulate_any(io::Point_table& table, const Options& options = {}, const Simplex_rows_sink* stream = nullptr,
+                    bool keep_coordinates = true);
 
 static_assert(io::min_dimension == kernel::min_dimension && io::max_dimension == kernel::max_dimension,
               "the file formats accept the dimensions the library is compiled for");

@@ -21,9 +21,10 @@ namespace dewall::cli {
 namespace {
 
 template <int D>
-Run triangulate_table(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream) {
+Run triangulate_table(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream,
+                      bool keep_coordinates) {
   const auto points = kernel_points<D>(table);
-  if (stream) std::vector<double>().swap(table.coordinates);
+  if (stream || !keep_coordinates) std::vector<double>().swap(table.coordinates);
   Run run;
   auto& indices = run.simplices.indices;
   run.simplices.vertices_per_simplex = D + 1;
@@ -71,8 +72,10 @@ certify::Report certify_any(const io::Point_table& points, const io::Simplex_tab
   return with_dimension(points.dimension, [&](auto d) { return certify_table<d()>(points, simplices, options); });
 }
 
-Run triangulate_any(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream) {
-  return with_dimension(table.dimension, [&](auto d) { return triangulate_table<d()>(table, options, stream); });
+Run triangulate_any(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream,
+                    bool keep_coordinates) {
+  return with_dimension(table.dimension,
+                        [&](auto d) { return triangulate_table<d()>(table, options, stream, keep_coordinates); });
 }
 
 void print_stats(std::FILE* out, const Run& run) {

@@ -71,7 +71,9 @@ int command_triangulate(int argc, char** argv) {
   const Simplex_rows_sink write_rows = [&](std::span<const std::uint32_t> rows) { writer->write(rows); };
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");
-    run = triangulate_any(table, options, stream ? &write_rows : nullptr);
+    // Only a VTK file writes the points again: otherwise the table's copy
+    // goes before the triangulation's peak (10^6 points: 24 MB).
+    run = triangulate_any(table, options, stream ? &write_rows : nullptr, io::is_vtk_path(output));
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();

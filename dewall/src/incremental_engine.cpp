@@ -50,16 +50,25 @@ template <int D>
 Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
                                    const std::vector<std::size_t>* given_distinct) {
   const kernel::Fp_environment_guard guard;
-  const std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
+  std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
+  const std::size_t distinct_count = distinct.size();
   Incremental_delaunay<D> dt;
   const bool built = dt.build(
       distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
       [&](std::size_t k) { return distinct[k]; });
   DEWALL_ASSERT(built);  // the points span E^D: checked above
+  // The output's peak: what the construction no longer needs goes first (the
+  // engine keeps the caller's ids), and the cells' pages as they are read
+  // (collecting 10^6 points: the process's peak 448 → 290 MB).
+  std::vector<std::size_t>().swap(distinct);
+  dt.finish_for_reading();
   Block_writer<D> writer(output, dt.finite_cells());
-  for (std::size_t c = 0; c < dt.slots(); ++c)
+  constexpr std::size_t release_every = std::size_t{1} << 15;  // slots: 1 MB of 3D cells
+  for (std::size_t c = 0; c < dt.slots(); ++c) {
     if (!dt.is_free(c) && !dt.is_infinite(c)) writer.put(input_vertices(dt, c));
-  return incremental_statistics(Engine::incremental, points.size(), distinct.size(), writer.finish());
+    if ((c + 1) % release_every == 0) dt.release_slots_before(c + 1);
+  }
+  return incremental_statistics(Engine::incremental, points.size(), distinct_count, writer.finish());
 }
 
 template <int D>
