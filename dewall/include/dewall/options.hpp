@@ -15,7 +15,7 @@ enum class Engine {
   /// construction when the walls' searches prove the input is one no
   /// gift-wrapping search is fast on (points on or near one sphere, thin
   /// surfaces, lattices): see Options::handover_candidates_per_search. An
-  /// input of at most automatic_whole_limit distinct points (1048576 when
+  /// input of at most automatic_whole_limit distinct points (33554432 when
   /// collected with the default region size; one region's size otherwise) is
   /// built by the incremental construction alone: up to there the walls and
   /// regions cost 1.3–1.9× its time on one thread and gain nothing on two
@@ -152,7 +152,11 @@ inline constexpr std::size_t largest_default_streaming_region = 32768;
 
 /// Engine::automatic builds collected inputs of at most this many distinct
 /// points by the incremental construction alone (automatic_whole_limit).
-inline constexpr std::size_t largest_automatic_whole_input = 1048576;
+/// 2^25: the incremental construction is faster than the hybrid at every
+/// measured size, on one core and on two (docs/engines.md, "The rule"), and
+/// 2^25 points keep its 2^30 cell slots enough at 20 cells a point (tori);
+/// above, the hybrid's regions.
+inline constexpr std::size_t largest_automatic_whole_input = 33554432;
 
 /// The region size Options::region_points asks for, for n points.
 constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
