@@ -231,15 +231,19 @@ class Incremental_delaunay {
   /// (insert_in_zones: in parallel, the same cells and slots for any number
   /// of threads); tests lower it.
   std::size_t zoned_insertion_threshold = std::size_t{1} << 16;
-  /// A zone whose first 4·zone_probe points wait more than a quarter of the
-  /// time (or its first zone_probe more than half) gives up the round, and
-  /// the rounds end: on a torus cut through its hole, whose cells cross every
-  /// such plane, 40 % of the points waited after long partial searches, and
-  /// one thread took twice its time (tests lower it). Not a quarter of the
-  /// first zone_probe alone: a zone's first points lie where the points'
-  /// curve enters it, beside the cut, where more cavities cross it (2·10^6
-  /// uniform points: 27 % of the first 2,048, then the zone's 937,500 points
-  /// went one by one, and two threads took one's time).
+  /// A zone whose first zone_probe points wait more than a quarter of the
+  /// time gives up the round, and the rounds end: on a torus cut through its
+  /// hole, whose cells cross every such plane, 40 % of the points waited
+  /// after long partial searches, and one thread took twice its time (tests
+  /// lower it). A zone of at least patient_zone_points gives up only when
+  /// more than half of its first zone_probe, or a quarter of its first
+  /// 4·zone_probe, waited: a zone's first points lie where the points' curve
+  /// enters it, beside the cut, where more cavities cross it (2·10^6 uniform
+  /// points: 27 % of the first 2,048, then the zone's 937,500 points went one
+  /// by one, and two threads took one's time: 3.54 s, patient 2.01 s).
+  /// Smaller zones keep the quarter: there giving up costs little, and
+  /// going on can cost more than it gives (a torus with noise, 10^5 points:
+  /// patient, one thread 0.195 → 0.231 s, two 0.188 → 0.125 s).
   std::size_t zone_probe = 2048;
   /// Tests: scales the new slots each zone gets (below 1 zones run out of
   /// slots early, and their points wait for the next round).
@@ -798,10 +802,11 @@ class Incremental_delaunay {
     w.last = no_cell;
     w.gave_up = false;
     std::size_t hint = no_cell;
+    const bool patient = points.size() >= patient_zone_points;
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (k % hint_spacing == 0) hint = hints[k / hint_spacing];
-      if ((k == zone_probe && w.deferred.size() > zone_probe / 2) ||
-          (k == 4 * zone_probe && w.deferred.size() > zone_probe))
+      if ((k == zone_probe && w.deferred.size() > (patient ? zone_probe / 2 : zone_probe / 4)) ||
+          (patient && k == 4 * zone_probe && w.deferred.size() > zone_probe))
         w.gave_up = true;
       const Index v = points[k];
       bool inserted = false;
@@ -823,6 +828,7 @@ class Incremental_delaunay {
     }
   }
   static constexpr std::size_t hint_spacing = 64;
+  static constexpr std::size_t patient_zone_points = std::size_t{1} << 19;  // zone_probe's comment
 
 
   /// Step 3: inserts vertex v (points_[v]). Zoned: false, having changed
