@@ -46,6 +46,14 @@ inline double max_abs(double m, double v) {
   return m < a ? a : m;           // maxsd: branch-free
 }
 
+/// max_i |m[i][j]|: the largest entry of column j in magnitude.
+template <int K>
+[[gnu::always_inline]] inline double column_max(const Matrix<double, K>& m, int j) {
+  double largest = 0;
+  for (int i = 0; i < K; ++i) largest = max_abs(largest, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+  return largest;
+}
+
 template <int D, int N>
 using Point_refs = kernel::Point_refs<D, N>;
 
@@ -79,9 +87,7 @@ template <class Recipe, int D, class Determinant>
   constexpr int K = Recipe::size;
   double bound = Recipe::epsilon;
   for (int j = 0; j < K; ++j) {
-    double column_max = 0;
-    for (int i = 0; i < K; ++i)
-      column_max = max_abs(column_max, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+    const double column_max = stages::column_max<K>(m, j);
     if (j < Recipe::spatial_columns) {
       // A zero column makes the exact determinant 0 when the points share that
       // coordinate. The computed column says so only under gradual underflow
@@ -408,11 +414,7 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p, bool 
   const auto m = Recipe::template matrix<double>(
       [&](int i, int j) { return scaled[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]; });
   double bound = factorial_int(K);
-  for (int j = 0; j < K; ++j) {
-    double column_max = 0;
-    for (int i = 0; i < K; ++i) column_max = max_abs(column_max, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
-    bound *= column_max;
-  }
+  for (int j = 0; j < K; ++j) bound *= stages::column_max<K>(m, j);
   if (!(bound < 0x1p52)) return std::nullopt;
   const double det = determinant<double, K>(m);
   return Recipe::sign_adjust * sign_of(det);

@@ -204,9 +204,7 @@ class Static_filter_d {
     if (!on_lattice()) return std::nullopt;
     double permanent = stages::factorial_int(K);
     for (int j = 0; j < K; ++j) {
-      double column_max = 0;
-      for (int i = 0; i < K; ++i)
-        column_max = stages::max_abs(column_max, m[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)]);
+      const double column_max = stages::column_max<K>(m, j);
       const double units = j < Recipe::spatial_columns ? column_max * inverse_unit_
                                                       : column_max * inverse_unit_ * inverse_unit_;
       permanent *= std::max(units, 1.0);
