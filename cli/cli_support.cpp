@@ -99,9 +99,10 @@ void print_stats(std::FILE* out, const Run& run) {
           {"side_of_sphere", &all.side_of_sphere[static_cast<std::size_t>(d)]}};
       for (const auto& [name, p] : kinds)
         if (p->calls())
-          std::fprintf(out, "predicate=%s dimension=%d filter=%llu permanent=%llu interval=%llu exact=%llu perturbed=%llu\n",
+          std::fprintf(out, "predicate=%s dimension=%d filter=%llu permanent=%llu running_error=%llu interval=%llu exact=%llu "
+                       "perturbed=%llu\n",
                        name, d, static_cast<unsigned long long>(p->filter), static_cast<unsigned long long>(p->permanent),
-                       static_cast<unsigned long long>(p->interval),
+                       static_cast<unsigned long long>(p->running_error), static_cast<unsigned long long>(p->interval),
                        static_cast<unsigned long long>(p->exact), static_cast<unsigned long long>(p->perturbed));
     }
   }

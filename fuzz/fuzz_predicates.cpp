@@ -7,8 +7,9 @@
 // predicates' preconditions and the perturbation's tie-breaking meet.
 //
 // Properties checked, for each query q:
-//  1. orientation_d of the simplex: the filter and the interval stage, when
-//     they answer, the exact stage and the filtered predicate all equal GMP.
+//  1. orientation_d of the simplex: the filter, the interval and the
+//     running-error stages, when they answer, the exact stage and the filtered
+//     predicate all equal GMP.
 //  2. side_of_oriented_sphere_d (unperturbed): the same, against GMP.
 //  3. With the simplex made positive (swap two vertices when negative) and q
 //     distinct from its vertices:
@@ -68,6 +69,7 @@ void check_orientation(const std::array<Point_d<D>, D + 1>& s) {
   const Sign expected = dewall::test::gmp_orientation<D>(s);
   if (const auto f = orientation_d_filter<D>(refs)) DEWALL_FUZZ_CHECK(*f == expected);
   if (const auto f = orientation_d_interval<D>(refs)) DEWALL_FUZZ_CHECK(*f == expected);
+  if (const auto f = orientation_d_running_error<D>(refs)) DEWALL_FUZZ_CHECK(*f == expected);
   DEWALL_FUZZ_CHECK(orientation_d_exact<D>(refs) == expected);
   DEWALL_FUZZ_CHECK(orientation_d<D>(refs) == expected);
 }
@@ -86,6 +88,8 @@ void check_sphere(std::array<Point_d<D>, D + 1> s, const Point_d<D>& q) {
   const Oriented_side expected = dewall::test::gmp_side_of_oriented_sphere<D>(s, q);
   if (const auto f = side_of_oriented_sphere_d_filter<D>(refs)) DEWALL_FUZZ_CHECK(static_cast<Oriented_side>(*f) == expected);
   if (const auto f = side_of_oriented_sphere_d_interval<D>(refs)) DEWALL_FUZZ_CHECK(static_cast<Oriented_side>(*f) == expected);
+  if (const auto f = side_of_oriented_sphere_d_running_error<D>(refs))
+    DEWALL_FUZZ_CHECK(static_cast<Oriented_side>(*f) == expected);
   DEWALL_FUZZ_CHECK(static_cast<Oriented_side>(side_of_oriented_sphere_d_exact<D>(refs)) == expected);
   DEWALL_FUZZ_CHECK(side_of_oriented_sphere_d<D>(refs) == expected);
 

@@ -80,12 +80,12 @@ class Region_handover {
 
 class Search_budget {
  public:
-  /// The cost of a predicate evaluation the filters left to the interval or
-  /// the exact stage, in candidates (one candidate is examined with the
+  /// The cost of a predicate evaluation the filters left to a second stage
+  /// (running error or intervals) or the exact stage, in candidates (one candidate is examined with the
   /// filters deciding): the stages' measured cost ratios (docs/engines.md). On
   /// points on one circle or sphere nearly every test goes to the exact stage,
   /// so counting candidates alone would let DeWall run far too long.
-  static constexpr std::size_t interval_cost = 10, exact_cost = 100;
+  static constexpr std::size_t second_stage_cost = 10, exact_cost = 100;
 
   /// per_search: Options::handover_candidates_per_search; n: the number of
   /// points; d: their dimension.
@@ -116,7 +116,7 @@ class Search_budget {
   void charge(std::size_t candidates) {
     if (settled_) return;
     const kernel::Slow_path_counts& now = kernel::slow_path_counts();
-    slow_cost_ += interval_cost * (now.interval - mark_.interval) + exact_cost * (now.exact - mark_.exact);
+    slow_cost_ += second_stage_cost * (now.second_stage - mark_.second_stage) + exact_cost * (now.exact - mark_.exact);
     mark_ = now;
     if (static_cast<double>(candidates + slow_cost_) > per_search_ * static_cast<double>(searches_) + allowance_)
       spend();

@@ -1,5 +1,5 @@
 // The one cascade every predicate runs: static filter → permanent filter →
-// interval → exact.
+// running error (intervals outside the filter's domain) → exact.
 //
 // A predicate is described by a *recipe*: the K×K matrix whose determinant's
 // sign it is, written once as a template over the number type. The stages below
@@ -13,9 +13,15 @@
 //   static constexpr int spatial_columns;  columns holding coordinate differences
 //   static constexpr double epsilon;       error_bounds.hpp, for this K and D
 //   static constexpr Sign sign_adjust;     sign(predicate) = sign_adjust · sign(det)
+//   static constexpr int origin;           the point every row is a difference from
 //   template <class T, class Coord> static Matrix<T, size> matrix(const Coord& c);
 //   template <class T, class Coord> static void fill(Matrix<T, size>& m, const Coord& c);  (the same, in place)
-//       c(i, j) is coordinate j of input point i, as a T.
+//       c(i, j) is coordinate j of input point i, as a T (or as a type whose
+//       difference is a T: Exact_coordinate, running_error.hpp).
+// The matrix's determinant is, up to a sign fixed by the recipe, an alternating
+// function of the input points (det[p_i, 1] for orientation, the lifted
+// det[p_i, |p_i|², 1] for the sphere test), so exchanging two points negates it;
+// the running-error stage uses that to choose its origin.
 //   static Predicate_stats& stats();
 #pragma once
 
@@ -34,6 +40,7 @@
 #include "dewall/kernel/interval.hpp"
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/predicate_stats.hpp"
+#include "dewall/kernel/running_error.hpp"
 #include "dewall/kernel/sign.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -193,19 +200,21 @@ std::optional<Sign> permanent_filter(const Point_refs<D, Recipe::arity>& p, doub
   return std::nullopt;
 }
 
-/// Whether the interval stage is worth trying on this thread for one recipe.
-/// After the permanent stage it decides few of the calls that reach it on
-/// some inputs (points on a sphere: most calls go on to the exact stage)
-/// and nearly all on others; its cost, two to four times the permanent
-/// stage's, pays only when it decides often: it costs about 0.4 of the exact
-/// stage's fixed-width path (3D, 58 against 140 ns a call). So it is tried in
+/// Whether a second stage (running error, or intervals outside the filter's
+/// domain) is worth trying on this thread for one recipe. After the permanent
+/// stage it decides few of the calls that reach it on some inputs (points on
+/// a sphere: most calls go on to the exact stage) and nearly all on others;
+/// its cost, two to four times the permanent stage's, pays only when it
+/// decides often: the intervals cost about 0.4 of the exact stage's
+/// fixed-width path (3D, 58 against 140 ns a call). So it is tried in
 /// windows of 64 calls; a window in which it decided fewer than one in three
 /// makes the next 960 calls skip it (then it is tried again); one in eight
-/// left it open on points on a sphere, where it decided about one call in
-/// eleven and took 17 % of the run (one in three: the run −10 %). Skipping a stage never
-/// changes an answer, only its cost. restart_interval_gates()
-/// (predicate_stats.hpp) sends every gate of the thread back to its start.
-class Interval_gate {
+/// left the intervals open on points on a sphere, where they decided about one
+/// call in eleven and took 17 % of the run (one in three: the run −10 %).
+/// Skipping a stage never changes an answer, only its cost.
+/// restart_interval_gates() (predicate_stats.hpp) sends every gate of the
+/// thread back to its start.
+class Stage_gate {
  public:
   bool open() {
     if (const std::uint32_t epoch = slow_path_counts().gate_epoch; epoch != epoch_) {
@@ -228,13 +237,98 @@ class Interval_gate {
   std::uint32_t tried_ = 0, decided_ = 0, skip_ = 0, epoch_ = 0;
 };
 
-template <class Recipe>
-Interval_gate& interval_gate() {
-  thread_local Interval_gate gate;
+struct Running_error_stage;
+struct Interval_stage;
+
+/// One gate per thread, recipe and stage.
+template <class Recipe, class Stage>
+Stage_gate& stage_gate() {
+  thread_local Stage_gate gate;
   return gate;
 }
 
-/// Stage 2b: the same determinant in interval arithmetic (no domain limits).
+/// Which of p's points lies nearest their centroid (L1; ties: the recipe's
+/// origin). Translated to it the matrix's rows are shortest, and so are the
+/// running error's bounds (degree K in the rows' lengths): on the calls the
+/// permanent stage leaves, the query is often at one end of its near-tie
+/// (points on a circle: a point inserted beside two or three neighbours),
+/// and translating by a central point instead decided 63 % against 41 %
+/// (3D, points on a sphere) and 77 % against 57 % (2D, on a circle).
+/// Rounding here only changes the choice, never an answer.
+template <class Recipe, int D>
+int central_point(const Point_refs<D, Recipe::arity>& p) {
+  constexpr int N = Recipe::arity;
+  std::array<double, D> sum{};
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < D; ++j) sum[static_cast<std::size_t>(j)] += (*p[static_cast<std::size_t>(i)])[j];
+  const auto distance = [&](int i) {
+    double d = 0;
+    for (int j = 0; j < D; ++j) d += std::fabs(N * (*p[static_cast<std::size_t>(i)])[j] - sum[static_cast<std::size_t>(j)]);
+    return d;
+  };
+  int best = Recipe::origin;
+  double best_distance = distance(best);
+  for (int i = 0; i < N; ++i)
+    if (const double d = distance(i); d < best_distance) {
+      best = i;
+      best_distance = d;
+    }
+  return best;
+}
+
+/// Stage 2b, in the filter's domain: the determinant in double with its
+/// rounding error bounded as it is computed (running_error.hpp), the rows
+/// translated by the central point (exchanging it with the origin negates the
+/// determinant: the recipe's determinant is alternating in the points).
+/// Derivation of the decision |det̂| > B:
+///  * running_error.hpp: |det̂ − det| ≤ ê, ê the exact value of the bound's
+///    expression over the computed values, when no operation underflows.
+///  * The computed bound is at least ê·(1 − u)^m, m < 2^13 the operations on
+///    any path (at most 10 per product of the expansion, K·2^(K−1) ≤ 448
+///    products): ê ≤ computed·(1 + 2^-39); the margin (1 + 2^-30) covers that
+///    and the two roundings of B.
+///  * Underflow: only called when the filter computed its determinant, so
+///    every spatial column maximum of the given translation lay in
+///    [2^-100, 2^100]; translated by another of the points, the spatial
+///    entries are below 2^101 and the lifted ones below D·2^202. Each of the
+///    fewer than 2^21 operations (values and bounds) that lands below 2^-1022
+///    loses less than 2^-1022, later multiplied by at most the K − 1 other
+///    entries of a monomial (≤ D·2^(101K)): less than 2^(101K − 995) in all,
+///    below the floor 2^(100K − 900) added to B for K ≤ 8.
+/// So |det̂| > B proves sign(det̂) = sign(det). Tested against GMP on points
+/// near circles and spheres, with every point as the central one
+/// (test_predicates_vs_gmp.cpp).
+template <class Recipe, int D>
+std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
+  constexpr int K = Recipe::size;
+  const int centre = central_point<Recipe, D>(p);
+  Point_refs<D, Recipe::arity> q = p;
+  std::swap(q[static_cast<std::size_t>(centre)], q[static_cast<std::size_t>(Recipe::origin)]);
+  const auto m = Recipe::template matrix<Tracked_double>(
+      [&](int i, int j) { return Exact_coordinate{(*q[static_cast<std::size_t>(i)])[j]}; });
+  const Tracked_double det = determinant<Tracked_double, K>(m);
+  constexpr double margin = 1 + 0x1p-30;
+  constexpr double floor = error_bounds::power_of_two(100 * K - 900);
+  const double bound = det.error() * margin + floor;
+  const Sign sign = centre == Recipe::origin ? Recipe::sign_adjust : -Recipe::sign_adjust;
+  if (det.value() > bound) return sign;
+  if (det.value() < -bound) return -sign;
+  return std::nullopt;
+}
+
+/// The running-error stage on its own, where the cascade runs it: nothing
+/// outside the filter's domain (the filter computed no determinant). Under the
+/// caller's guard of the environment.
+template <class Recipe, int D>
+std::optional<Sign> running_error_in_domain(const Point_refs<D, Recipe::arity>& p) {
+  double computed = std::numeric_limits<double>::quiet_NaN();
+  (void)filter<Recipe, D>(p, &computed);
+  if (std::isnan(computed)) return std::nullopt;
+  return running_error<Recipe, D>(p);
+}
+
+/// Stage 2b outside the filter's domain: the same determinant in interval
+/// arithmetic (no domain limits).
 template <class Recipe, int D>
 std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
   const auto m = Recipe::template matrix<Interval>(
@@ -450,16 +544,26 @@ template <class Recipe, int D>
     return *s;
   }
   if (computed != 0) {
-    if (auto s = permanent_filter<Recipe, D>(p, unscaled)) {
-      count(stats.permanent);
-      return *s;
-    }
-    if (Interval_gate& gate = interval_gate<Recipe>(); gate.open()) {
+    if (!std::isnan(unscaled)) {
+      if (auto s = permanent_filter<Recipe, D>(p, unscaled)) {
+        count(stats.permanent);
+        return *s;
+      }
+      if (Stage_gate& gate = stage_gate<Recipe, Running_error_stage>(); gate.open()) {
+        const auto s = running_error<Recipe, D>(p);
+        gate.record(s.has_value());
+        if (s) {
+          count(stats.running_error);
+          ++slow.second_stage;
+          return *s;
+        }
+      }
+    } else if (Stage_gate& gate = stage_gate<Recipe, Interval_stage>(); gate.open()) {
       const auto s = interval<Recipe, D>(p);
       gate.record(s.has_value());
       if (s) {
         count(stats.interval);
-        ++slow.interval;
+        ++slow.second_stage;
         return *s;
       }
     }

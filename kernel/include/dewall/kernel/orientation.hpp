@@ -28,6 +28,9 @@ std::optional<Sign> orientation_d_filter(const Orientation_points<D>& p);
 /// The interval stage alone.
 template <int D>
 std::optional<Sign> orientation_d_interval(const Orientation_points<D>& p);
+/// The running-error stage alone (nothing outside the filter's domain).
+template <int D>
+std::optional<Sign> orientation_d_running_error(const Orientation_points<D>& p);
 /// The exact stage alone (128-bit integers or GMP).
 template <int D>
 Sign orientation_d_exact(const Orientation_points<D>& p);
@@ -60,6 +63,7 @@ struct Orientation_recipe {
   static constexpr int spatial_columns = D;
   static constexpr double epsilon = error_bounds::orientation_epsilon(D);
   static constexpr Sign sign_adjust = POSITIVE;
+  static constexpr int origin = 0;  // rows p_{i+1} − p_0
 
   /// Writes the matrix into m (the exact stage reuses m's integers: no allocation).
   template <class T, class Coord>
@@ -87,6 +91,11 @@ std::optional<Sign> orientation_d_interval(const Orientation_points<D>& p) {
   return stages::interval<Orientation_recipe<D>, D>(p);
 }
 template <int D>
+std::optional<Sign> orientation_d_running_error(const Orientation_points<D>& p) {
+  const Fp_environment_guard guard;
+  return stages::running_error_in_domain<Orientation_recipe<D>, D>(p);
+}
+template <int D>
 Sign orientation_d_exact(const Orientation_points<D>& p) {
   const Fp_environment_guard guard;
   return stages::exact<Orientation_recipe<D>, D>(p);
@@ -104,6 +113,7 @@ Sign orientation_d(const Orientation_points<D>& p) {
 #define DEWALL_ORIENTATION_INSTANTIATION(PREFIX, D)                                           \
   PREFIX template std::optional<Sign> orientation_d_filter<D>(const Orientation_points<D>&);   \
   PREFIX template std::optional<Sign> orientation_d_interval<D>(const Orientation_points<D>&); \
+  PREFIX template std::optional<Sign> orientation_d_running_error<D>(const Orientation_points<D>&); \
   PREFIX template Sign orientation_d_exact<D>(const Orientation_points<D>&);                   \
   PREFIX template Sign orientation_d<D>(const Orientation_points<D>&);                         \
   PREFIX template Sign stages::after_filter<Orientation_recipe<D>, D>(const Orientation_points<D>&, double);

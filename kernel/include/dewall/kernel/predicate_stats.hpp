@@ -1,4 +1,4 @@
-// Per-stage counters: how often the filter, the permanent filter, the interval stage, the exact stage
+// Per-stage counters: how often the filter, the permanent filter, the running-error stage, the interval stage, the exact stage
 // and the symbolic perturbation decided. Compiled out unless the build defines
 // DEWALL_PREDICATE_STATS (CMake option DEWALL_PREDICATE_STATS); the relaxed
 // atomic increments cost a few percent on the hot path, so release builds skip them.
@@ -11,10 +11,10 @@
 namespace dewall::kernel {
 
 struct Predicate_stats {
-  std::atomic<std::uint64_t> filter{0}, permanent{0}, interval{0}, exact{0}, perturbed{0};
+  std::atomic<std::uint64_t> filter{0}, permanent{0}, running_error{0}, interval{0}, exact{0}, perturbed{0};
 
-  std::uint64_t calls() const { return filter + permanent + interval + exact; }
-  void reset() { filter = permanent = interval = exact = perturbed = 0; }
+  std::uint64_t calls() const { return filter + permanent + running_error + interval + exact; }
+  void reset() { filter = permanent = running_error = interval = exact = perturbed = 0; }
 };
 
 /// Counters indexed by dimension (0 and 1 unused).
@@ -41,9 +41,10 @@ inline constexpr bool predicate_stats_enabled =
 /// Engine::automatic reads them to charge a search for what it really cost
 /// (dewall/detail/handover_rule.hpp).
 struct Slow_path_counts {
-  std::uint64_t interval = 0, exact = 0;
+  /// second_stage: decided by the running-error or the interval stage.
+  std::uint64_t second_stage = 0, exact = 0;
   /// Advanced by restart_interval_gates: a gate that last saw another epoch
-  /// starts afresh (filtered_predicate.hpp, Interval_gate).
+  /// starts afresh (filtered_predicate.hpp, Stage_gate).
   std::uint32_t gate_epoch = 0;
 };
 
@@ -52,7 +53,7 @@ inline Slow_path_counts& slow_path_counts() {
   return counts;
 }
 
-/// Makes every interval gate of this thread start afresh. Which stage decides
+/// Makes every stage gate of this thread start afresh. Which stage decides
 /// a call, and so what it counts above, depends on its gate's state, which
 /// depends on every call the thread made before; Engine::automatic's budget
 /// restarts the gates at each search, so that a search's charge is a function

@@ -27,11 +27,14 @@ template <int D>
 using Sphere_points = Point_refs<D, D + 2>;  // simplex, then the query
 
 /// The stages alone: the static filter (valid in any floating-point
-/// environment), the interval stage, the exact stage.
+/// environment), the interval stage, the running-error stage (nothing outside
+/// the filter's domain), the exact stage.
 template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_filter(const Sphere_points<D>& p);
 template <int D>
 std::optional<Sign> side_of_oriented_sphere_d_interval(const Sphere_points<D>& p);
+template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_running_error(const Sphere_points<D>& p);
 template <int D>
 Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p);
 
@@ -75,6 +78,7 @@ struct Side_of_sphere_recipe {
   static constexpr int spatial_columns = D;
   static constexpr double epsilon = error_bounds::side_of_sphere_epsilon(D);
   static constexpr Sign sign_adjust = D % 2 == 0 ? POSITIVE : NEGATIVE;
+  static constexpr int origin = D + 1;  // rows p_i − q
 
   /// Writes the matrix into m (the exact stage reuses m's integers: no allocation).
   template <class T, class Coord>
@@ -106,6 +110,11 @@ std::optional<Sign> side_of_oriented_sphere_d_interval(const Sphere_points<D>& p
   return stages::interval<Side_of_sphere_recipe<D>, D>(p);
 }
 template <int D>
+std::optional<Sign> side_of_oriented_sphere_d_running_error(const Sphere_points<D>& p) {
+  const Fp_environment_guard guard;
+  return stages::running_error_in_domain<Side_of_sphere_recipe<D>, D>(p);
+}
+template <int D>
 Sign side_of_oriented_sphere_d_exact(const Sphere_points<D>& p) {
   const Fp_environment_guard guard;
   return stages::exact<Side_of_sphere_recipe<D>, D>(p);
@@ -128,6 +137,7 @@ Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
 #define DEWALL_SIDE_OF_SPHERE_INSTANTIATION(PREFIX, D)                                             \
   PREFIX template std::optional<Sign> side_of_oriented_sphere_d_filter<D>(const Sphere_points<D>&);   \
   PREFIX template std::optional<Sign> side_of_oriented_sphere_d_interval<D>(const Sphere_points<D>&); \
+  PREFIX template std::optional<Sign> side_of_oriented_sphere_d_running_error<D>(const Sphere_points<D>&); \
   PREFIX template Sign side_of_oriented_sphere_d_exact<D>(const Sphere_points<D>&);                   \
   PREFIX template Oriented_side side_of_oriented_sphere_d<D>(const Sphere_points<D>&);                \
   PREFIX template Oriented_side side_of_oriented_sphere_d_sos<D>(const Sphere_points<D>&);            \
