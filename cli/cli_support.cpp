@@ -23,7 +23,7 @@ namespace {
 template <int D>
 Run triangulate_table(io::Point_table& table, const Options& options, const Simplex_rows_sink* stream,
                       bool keep_coordinates) {
-  const auto points = kernel_points<D>(table);
+  auto points = kernel_points<D>(table);
   if (stream || !keep_coordinates) std::vector<double>().swap(table.coordinates);
   Run run;
   auto& indices = run.simplices.indices;
@@ -35,9 +35,13 @@ Run triangulate_table(io::Point_table& table, const Options& options, const Simp
   struct Rows {
     std::vector<std::uint32_t>& indices;
     const Simplex_rows_sink* stream;
+    std::vector<kernel::Point_d<D>>& points;
     void reserve(std::size_t n) {
       if (!stream) indices.reserve(n * (D + 1));
     }
+    // The engine has copied the points: ours go (what is written needs none,
+    // or, for VTK, takes them from the table).
+    void input_no_longer_read() { std::vector<kernel::Point_d<D>>().swap(points); }
     void operator()(const Simplex<D>& s) {
       indices.insert(indices.end(), s.begin(), s.end());
       if (stream && indices.size() == rows_per_block * (D + 1)) {
@@ -47,7 +51,7 @@ Run triangulate_table(io::Point_table& table, const Options& options, const Simp
     }
   };
   run.stats = triangulate_to<kernel::Filtered_kernel_d<D>>(std::span<const kernel::Point_d<D>>(points),
-                                                            Rows{indices, stream}, options);
+                                                            Rows{indices, stream, points}, options);
   if (stream) {
     (*stream)(indices);
     std::vector<std::uint32_t>().swap(indices);

@@ -36,7 +36,7 @@ Statistics triangulate_automatic(std::span<const kernel::Point_d<D>> points, con
   using K = kernel::Filtered_kernel_d<D>;
   if constexpr (D >= 4) return incremental.whole(points, output);
   // The input checks once, for both engines.
-  const std::vector<std::size_t> distinct = distinct_points<K>(K{}, points);
+  const Distinct_points distinct = distinct_points<K>(K{}, points);
   if (distinct.size() <= automatic_whole_limit(options, distinct.size())) return incremental.whole(points, output, &distinct);
   const Hybrid<D> hybrid{incremental.regions(),
                          Search_budget(options.handover_candidates_per_search, points.size(), D), &distinct};

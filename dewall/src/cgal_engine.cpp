@@ -171,10 +171,12 @@ bool cells_negative(const Graph& graph, Point_of&& point) {
 
 template <int D>
 Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
-                                 const std::vector<std::size_t>* given_distinct) {
+                                 const Distinct_points* given_distinct) {
   const kernel::Fp_environment_guard guard;  // CGAL's filters assume the default environment too
-  const std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
-  const std::vector<Index> ids(distinct.begin(), distinct.end());
+  Distinct_points own;
+  const Distinct_points& distinct = checked_distinct_points<D>(points, given_distinct, own);
+  std::vector<Index> ids(distinct.size());
+  for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = static_cast<Index>(distinct[k]);
   // Positively oriented, as DeWall writes them (TetGen .ele expects it).
   auto point = [&](Index i) -> const std::array<double, D>& { return points[i].x; };
   std::size_t count = 0;
@@ -204,7 +206,7 @@ bool cgal_region_cells(std::span<const Index> region, const std::vector<Coords<D
 
 #define DEWALL_INSTANTIATE_CGAL_ENGINE(D)                                                                      \
   template Statistics triangulate_with_cgal<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,         \
-                                               const std::vector<std::size_t>*);                                \
+                                               const Distinct_points*);                                         \
   template bool cgal_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&, Region_filter<D>&);
 DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_CGAL_ENGINE)
 

@@ -22,7 +22,7 @@ namespace dewall::detail {
 /// `distinct`, when given, is distinct_points(points), computed by the caller.
 template <int D>
 Statistics triangulate_with_cgal(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
-                                 const std::vector<std::size_t>* distinct = nullptr);
+                                 const Distinct_points* distinct = nullptr);
 
 /// The region triangulator of Engine::hybrid (region.hpp): CGAL's
 /// triangulation of the points `region`, walked by `filter` in place.

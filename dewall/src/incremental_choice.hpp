@@ -38,7 +38,7 @@ class Incremental_choice {
   /// triangulate_with_cgal, triangulate_incremental). `distinct`, when given,
   /// is distinct_points(points), computed by the caller.
   Statistics whole(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
-                   const std::vector<std::size_t>* distinct = nullptr) const {
+                   const Distinct_points* distinct = nullptr) const {
     return own_whole_ ? triangulate_incremental<D>(points, output, distinct)
                       : triangulate_with_cgal<D>(points, output, distinct);
   }

@@ -48,20 +48,21 @@ struct Incremental_graph {
 
 template <int D>
 Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
-                                   const std::vector<std::size_t>* given_distinct) {
+                                   const Distinct_points* given_distinct) {
   const kernel::Fp_environment_guard guard;
-  std::vector<std::size_t> distinct = checked_distinct_points<D>(points, given_distinct);
+  Distinct_points own;
+  const Distinct_points& distinct = checked_distinct_points<D>(points, given_distinct, own);
   const std::size_t distinct_count = distinct.size();
   Incremental_delaunay<D> dt;
   const bool built = dt.build(
       distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
-      [&](std::size_t k) { return distinct[k]; });
+      [&](std::size_t k) { return distinct[k]; }, nullptr, [&] { output.input_no_longer_read(); });
   DEWALL_ASSERT(built);  // the points span E^D: checked above
   // The output's peak: what the construction no longer needs goes first (the
   // engine keeps the caller's ids), and the cells' pages as they are read, so
   // that the output list grows into them (collecting 10^6 points with the
-  // tool: its peak 448 → 312 MB, now the end of the build).
-  std::vector<std::size_t>().swap(distinct);
+  // tool: its peak 448 → 312 MB, then the end of the build).
+  own = Distinct_points();
   dt.finish_for_reading();
   Block_writer<D> writer(output, dt.finite_cells());
   constexpr std::size_t release_every = std::size_t{1} << 15;  // slots: 1 MB of 3D cells
@@ -89,7 +90,7 @@ bool incremental_region_cells(std::span<const Index> region, const std::vector<C
 
 #define DEWALL_INSTANTIATE_INCREMENTAL_ENGINE(D)                                                            \
   template Statistics triangulate_incremental<D>(std::span<const kernel::Point_d<D>>, Simplex_output<D>&,    \
-                                                 const std::vector<std::size_t>*);                           \
+                                                 const Distinct_points*);                                    \
   template bool incremental_region_cells<D>(std::span<const Index>, const std::vector<Coords<D>>&,           \
                                             Region_filter<D>&);
 DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_INCREMENTAL_ENGINE)

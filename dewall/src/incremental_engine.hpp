@@ -17,7 +17,7 @@ namespace dewall::detail {
 /// `output` as positively oriented input indices, in blocks.
 template <int D>
 Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, Simplex_output<D>& output,
-                                   const std::vector<std::size_t>* distinct = nullptr);
+                                   const Distinct_points* distinct = nullptr);
 
 /// As cgal_region_cells: the region's triangulation by Incremental_delaunay,
 /// walked by `filter`.

@@ -19,12 +19,13 @@ namespace dewall::detail {
 
 /// The same input checks as DeWall's (Invalid_input: non-finite coordinates,
 /// too few distinct points, points not spanning E^D); the distinct points
-/// (first occurrences), or `given` when the caller computed them.
+/// (first occurrences): `given` when the caller computed them, else found
+/// and kept in `own`.
 template <int D>
-std::vector<std::size_t> checked_distinct_points(std::span<const kernel::Point_d<D>> points,
-                                                 const std::vector<std::size_t>* given) {
+const Distinct_points& checked_distinct_points(std::span<const kernel::Point_d<D>> points,
+                                               const Distinct_points* given, Distinct_points& own) {
   using K = kernel::Filtered_kernel_d<D>;
-  std::vector<std::size_t> distinct = given ? *given : distinct_points<K>(K{}, points);
+  const Distinct_points& distinct = given ? *given : (own = distinct_points<K>(K{}, points));
   require_full_dimension<D>(distinct.size(),
                             [&](std::size_t i) -> const std::array<double, D>& { return points[distinct[i]].x; });
   return distinct;

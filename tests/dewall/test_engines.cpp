@@ -8,6 +8,7 @@
 #include <tbb/task_group.h>
 
 #include <atomic>
+#include <limits>
 #include <optional>
 #include <span>
 #include <random>
@@ -450,4 +451,42 @@ TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine
   // automatic means DeWall with another kernel
   CHECK(dewall::triangulate<User_kernel>(std::span<const dewall::kernel::Point_d<2>>(points)).statistics.engine ==
         Engine::dewall);
+}
+
+TEST_CASE("engines: a sink told the input is no longer read may destroy it, and the simplices are the same",
+          "[engine]") {
+  // The tool frees its points when told (cli_support.cpp); here the sink
+  // overwrites them with NaN instead, so that any later read would show.
+  const auto with_duplicates = [] {
+    auto p = generated<3>(dewall::io::Point_kind::uniform, 1500, 13);
+    p.insert(p.end(), p.begin(), p.begin() + 200);  // the distinct list is then kept
+    return p;
+  }();
+  for (const auto& given : {generated<3>(dewall::io::Point_kind::uniform, 1500, 13), with_duplicates}) {
+    for (const Engine engine : {Engine::automatic, Engine::incremental, Engine::cgal, Engine::dewall}) {
+      Options options;
+      options.engine = engine;
+      const auto expected = dewall::triangulate<3>(given, options).simplices;
+      std::vector<dewall::kernel::Point_d<3>> points = given;
+      struct Sink {
+        std::vector<dewall::kernel::Point_d<3>>& points;
+        std::vector<dewall::Simplex<3>>& out;
+        int told = 0;
+        void input_no_longer_read() {
+          ++told;
+          for (auto& p : points) p.x.fill(std::numeric_limits<double>::quiet_NaN());
+        }
+        void operator()(const dewall::Simplex<3>& s) { out.push_back(s); }
+      };
+      std::vector<dewall::Simplex<3>> got;
+      Sink sink{points, got};
+      dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(std::span<const dewall::kernel::Point_d<3>>(points),
+                                                                   sink, options);
+      INFO("engine " << dewall::engine_name(engine) << ", " << given.size() << " points");
+      CHECK(got == expected);
+      // Told once by the project's incremental construction (the automatic
+      // engine's choice for so few points), never by the others.
+      CHECK(sink.told == (engine == Engine::automatic || engine == Engine::incremental ? 1 : 0));
+    }
+  }
 }

@@ -135,6 +135,13 @@ class Incremental_delaunay {
   /// insert_more will insert; null: the points' bounding box).
   template <class Coordinates, class Id>
   bool build(std::size_t count, Coordinates&& coordinates, Id&& id, const Box<D>* filter_box) {
+    return build(count, coordinates, id, filter_box, [] {});
+  }
+  /// As build(count, coordinates, id, filter_box), calling gathered() once
+  /// coordinates and id will not be called again (the points are copied in
+  /// insertion order; none is inserted yet): the caller may free its points.
+  template <class Coordinates, class Id, class Gathered>
+  bool build(std::size_t count, Coordinates&& coordinates, Id&& id, const Box<D>* filter_box, Gathered&& gathered) {
     if (count < static_cast<std::size_t>(D + 1)) return false;
     const Box<D> box = bounding_box<D>(count, coordinates);
     std::vector<std::uint32_t> order = brio_order<D>(count, coordinates, box);
@@ -152,6 +159,7 @@ class Incremental_delaunay {
       }
     });
     std::vector<std::uint32_t>().swap(order);
+    gathered();
     // Cells per point range from 6.5 (volume) to 20 (samples of a torus) in
     // 3D, and more above: the first sixteenth of the BRIO order (its first
     // rounds: a random sample) predicts the count. When the arrays would

@@ -37,6 +37,11 @@ class Simplex_output {
   /// first put (collected output): a receiver may reserve room.
   virtual void expect(std::size_t /*count*/) {}
   virtual void put(std::span<const Built_simplex<D>> block) = 0;
+  /// Called at most once, when the engine will not read the input points
+  /// again (the project's incremental construction, once it has copied them
+  /// in its insertion order, before it inserts any): a receiver whose caller
+  /// owns the points may free them.
+  virtual void input_no_longer_read() {}
 
  protected:
   ~Simplex_output() = default;

@@ -35,7 +35,7 @@ struct Hybrid {
   /// output.
   std::optional<Search_budget> budget = std::nullopt;
   /// distinct_points(points), when the caller computed it.
-  const std::vector<std::size_t>* distinct = nullptr;
+  const Distinct_points* distinct = nullptr;
 };
 
 /// Hands the Delaunay simplices of `points` (input indices, positively
@@ -48,7 +48,8 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
                              Simplex_output<K::dimension>& output, const Hybrid<K::dimension>* hybrid) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
-  std::vector<std::size_t> input = hybrid && hybrid->distinct ? *hybrid->distinct : distinct_points<K>(k, points);
+  std::vector<std::size_t> input =
+      hybrid && hybrid->distinct ? hybrid->distinct->to_vector() : distinct_points<K>(k, points).to_vector();
   std::vector<const typename K::Point_d*> refs(input.size());
   for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
   const Point_set<K> ps(k, std::move(refs), std::move(input), options.points_per_leaf);
