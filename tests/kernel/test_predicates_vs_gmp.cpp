@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -619,6 +620,36 @@ TEST_CASE("lowest_bit_exponent: x = odd · 2^e gives e, at every exponent", "[pr
     INFO("x = " << odd << " · 2^" << e);
     CHECK(lowest_bit_exponent(x) == e);
   }
+}
+
+TEST_CASE("low_bits_set: a set low bit rules out small integers and 32 trailing zeros, at every exponent",
+          "[predicates]") {
+  // What the exact stages' shortcut claims (filtered_predicate.hpp): when it
+  // says yes, x is no integer of magnitude at most 2^20 and the significand
+  // has fewer than 32 trailing zeros (lowest_bit_exponent above measures
+  // them); and it says yes to most doubles of full precision.
+  Rng rng(20261127);
+  int said_yes = 0, full_precision = 0;
+  for (int e = -1074; e <= 1023 - 52; ++e) {
+    const int bits = static_cast<int>(dewall::test::uniform_int(rng, 1, 53));
+    const auto odd = static_cast<double>((std::uint64_t{1} << (bits - 1)) | 1 | (rng() & ((std::uint64_t{1} << (bits - 1)) - 1)));
+    for (const double x : {std::ldexp(rng() % 2 ? odd : -odd, e), static_cast<double>(static_cast<std::int64_t>(rng() % (1 << 21)) - (1 << 20))}) {
+      if (x == 0 || !std::isfinite(x)) continue;
+      INFO("x = " << x);
+      const bool small_integer = std::fabs(x) <= 0x1p20 && x == std::nearbyint(x);
+      int exponent = 0;
+      const double mantissa = std::frexp(x, &exponent);
+      const int trailing_zeros = std::countr_zero(static_cast<std::uint64_t>(std::fabs(std::ldexp(mantissa, 53))));
+      if (stages::low_bits_set(x)) {
+        ++said_yes;
+        CHECK(!small_integer);
+        CHECK(trailing_zeros < 32);
+      }
+      full_precision += std::fpclassify(x) == FP_NORMAL && trailing_zeros < 32;
+    }
+  }
+  CHECK(said_yes == full_precision);  // every normal double with fewer than 32 trailing zeros
+  CHECK(said_yes > 0);
 }
 
 // The static filter made exact on a lattice (static_filter.hpp, "Exact
