@@ -490,3 +490,36 @@ TEST_CASE("engines: a sink told the input is no longer read may destroy it, and 
     }
   }
 }
+
+TEST_CASE("engines: after the hybrid hands over, and in 4D, the sink is told once and the simplices are the same",
+          "[engine]") {
+  // Points on a sphere with regions asked for: the walls start, read the
+  // points, spend their budget and hand the whole input over; in 4D the
+  // automatic engine leaves everything to the incremental construction.
+  const auto check = []<int D>(const std::vector<dewall::kernel::Point_d<D>>& given, const Options& options,
+                               Engine expected_engine) {
+    const auto expected = dewall::triangulate<D>(given, options);
+    CHECK(expected.statistics.engine == expected_engine);
+    auto points = given;
+    struct Sink {
+      std::vector<dewall::kernel::Point_d<D>>& points;
+      std::vector<dewall::Simplex<D>> out;
+      int told = 0;
+      void input_no_longer_read() {
+        ++told;
+        for (auto& p : points) p.x.fill(std::numeric_limits<double>::quiet_NaN());
+      }
+      void operator()(const dewall::Simplex<D>& s) { out.push_back(s); }
+    } sink{points};
+    const auto st = dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<D>>(
+        std::span<const dewall::kernel::Point_d<D>>(points), sink, options);
+    CHECK(st.engine == expected_engine);
+    if (options.region_points) CHECK(st.searches_before_handover > 0);  // the walls ran first
+    CHECK(sink.told == 1);
+    CHECK(sink.out == expected.simplices);
+  };
+  Options regions;
+  regions.region_points = 512;
+  check(generated<3>(dewall::io::Point_kind::sphere, 4000, 14), regions, Engine::incremental);
+  check(generated<4>(dewall::io::Point_kind::uniform, 600, 15), Options{}, Engine::incremental);
+}

@@ -115,6 +115,17 @@ std::optional<Sign> permanent_stage(const Point_refs<D, Recipe::arity>& refs) {
   return stages::permanent_filter<Recipe, D>(refs, computed);
 }
 
+/// The running-error stage as the cascade runs it (in the filter's domain,
+/// under a guard of the environment), with point `centre` as the rows' origin.
+template <class Recipe, int D>
+std::optional<Sign> running_error_stage(const Point_refs<D, Recipe::arity>& refs, int centre) {
+  double computed = std::numeric_limits<double>::quiet_NaN();
+  (void)stages::filter<Recipe, D>(refs, &computed);
+  if (std::isnan(computed)) return std::nullopt;
+  const Fp_environment_guard guard;
+  return stages::running_error<Recipe, D>(refs, centre);
+}
+
 /// The exact stage's fixed-width path on its own (it may decline).
 template <class Recipe, int D>
 void check_fixed_width(const Point_refs<D, Recipe::arity>& refs, int expected, const std::vector<Point<D>>& points,
@@ -425,6 +436,9 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
   };
   int near_cases = 0, permanent_decided = 0, permanent_left = 0, running_error_decided = 0, recentred = 0,
       mismatches = 0;
+  // Decisions with another point than the recipe's origin as the rows' origin
+  // (the exchange's sign flip), over every choice of that point.
+  std::array<int, 2> other_origin_decided{};  // sphere, orientation
   std::string report;
   const auto check = [&](const char* what, int expected, std::optional<Sign> got, const std::vector<Point<D>>& points) {
     if (!got || *got == expected) return;
@@ -453,6 +467,15 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
     check("orientation permanent filter", orientation, permanent_stage<Orientation_recipe<D>, D>(orientation_refs),
           points);
     check("orientation running error", orientation, orientation_d_running_error<D>(orientation_refs), points);
+    for (int centre = 0; centre <= D + 1; ++centre) {
+      const auto s = running_error_stage<Side_of_sphere_recipe<D>, D>(sphere_refs, centre);
+      check("sphere running error, every centre", sphere, s, points);
+      other_origin_decided[0] += s && centre != D + 1;
+      if (centre > D) continue;
+      const auto o = running_error_stage<Orientation_recipe<D>, D>(orientation_refs, centre);
+      check("orientation running error, every centre", orientation, o, points);
+      other_origin_decided[1] += o && centre != 0;
+    }
     check("orientation_d", orientation, orientation_d<D>(orientation_refs), points);
     return permanent.has_value();
   };
@@ -521,6 +544,10 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
                                       << " with another origin");
   CHECK(running_error_decided > permanent_left / 8);
   CHECK(recentred > running_error_decided / 4);
+  INFO("decided with another origin, sphere " << other_origin_decided[0] << ", orientation "
+                                             << other_origin_decided[1]);
+  CHECK(other_origin_decided[0] > near_cases);
+  CHECK(other_origin_decided[1] > near_cases);
 }
 
 // The exact stage's integer path (small_integer_coordinates): inputs at the

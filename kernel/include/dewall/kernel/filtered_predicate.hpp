@@ -254,17 +254,21 @@ Stage_gate& stage_gate() {
 /// (points on a circle: a point inserted beside two or three neighbours),
 /// and translating by the central point instead decided 61 % against 41 %
 /// (3D, points on a sphere) and 71 % against 57 % (2D, on a circle) of the
-/// calls the exact stage had decided before this stage existed.
-/// Rounding here only changes the choice, never an answer.
+/// calls the exact stage had decided before this stage existed. Computed
+/// from the differences to the origin point, so that coordinates far larger
+/// than the points' spread still choose well; rounding here only changes
+/// the choice, never an answer.
 template <class Recipe, int D>
 int central_point(const Point_refs<D, Recipe::arity>& p) {
   constexpr int N = Recipe::arity;
+  const auto& o = *p[static_cast<std::size_t>(Recipe::origin)];
+  const auto difference = [&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j] - o[j]; };
   std::array<double, D> sum{};
   for (int i = 0; i < N; ++i)
-    for (int j = 0; j < D; ++j) sum[static_cast<std::size_t>(j)] += (*p[static_cast<std::size_t>(i)])[j];
+    for (int j = 0; j < D; ++j) sum[static_cast<std::size_t>(j)] += difference(i, j);
   const auto distance = [&](int i) {
     double d = 0;
-    for (int j = 0; j < D; ++j) d += std::fabs(N * (*p[static_cast<std::size_t>(i)])[j] - sum[static_cast<std::size_t>(j)]);
+    for (int j = 0; j < D; ++j) d += std::fabs(N * difference(i, j) - sum[static_cast<std::size_t>(j)]);
     return d;
   };
   int best = Recipe::origin;
@@ -279,30 +283,34 @@ int central_point(const Point_refs<D, Recipe::arity>& p) {
 
 /// Stage 2b, in the filter's domain: the determinant in double with its
 /// rounding error bounded as it is computed (running_error.hpp), the rows
-/// translated by the central point (exchanging it with the origin negates the
+/// translated by point `centre` (exchanging it with the origin negates the
 /// determinant: the recipe's determinant is alternating in the points).
 /// Derivation of the decision |det̂| > B:
 ///  * running_error.hpp: |det̂ − det| ≤ ê, ê the exact value of the bound's
 ///    expression over the computed values, when no operation underflows.
-///  * The computed bound is at least ê·(1 − u)^m, m < 2^13 the operations on
-///    any path (at most 10 per product of the expansion, K·2^(K−1) ≤ 448
-///    products): ê ≤ computed·(1 + 2^-39); the margin (1 + 2^-30) covers that
-///    and the two roundings of B.
+///  * The computed bound is at least ê·(1 − u)^m, m the rounded operations
+///    of the whole bound computation (a term e_x·e_y joins the roundings of
+///    both operands, so not those of one path alone): about 11 per product of
+///    the expansion and its sum, K·2^(K−1) ≤ 448 products, and the entries,
+///    fewer than 2^13 for K ≤ 7; so ê ≤ computed·(1 + 2^-39), and the margin
+///    (1 + 2^-30) covers that and the two roundings of B.
 ///  * Underflow: only called when the filter computed its determinant, so
 ///    every spatial column maximum of the given translation lay in
 ///    [2^-100, 2^100]; translated by another of the points, the spatial
 ///    entries are below 2^101 and the lifted ones below D·2^202. Each of the
-///    fewer than 2^21 operations (values and bounds) that lands below 2^-1022
-///    loses less than 2^-1022, later multiplied by at most the K − 1 other
-///    entries of a monomial (≤ D·2^(101K)): less than 2^(101K − 995) in all,
-///    below the floor 2^(100K − 900) added to B for K ≤ 8.
+///    fewer than 2^13 operations (values and bounds) that lands below
+///    2^-1022 loses less than 2^-1022; a loss inside a minor of size r
+///    reaches the determinant multiplied by its cofactor, at most (K − r)!
+///    monomials of the other rows' entries (each monomial ≤ D·2^(101K)):
+///    less than 2^13 · 7! · D · 2^-1022 · 2^(101K) < 2^(101K − 994) in all,
+///    below the floor 2^(100K − 900) added to B.
 /// So |det̂| > B proves sign(det̂) = sign(det). Tested against GMP on points
-/// near circles and spheres, with every point as the central one
-/// (test_predicates_vs_gmp.cpp).
+/// near circles and spheres with every point as the centre, and on every
+/// family of test_predicates_vs_gmp.cpp with the chosen one.
 template <class Recipe, int D>
-std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
+std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p, int centre) {
   constexpr int K = Recipe::size;
-  const int centre = central_point<Recipe, D>(p);
+  static_assert(K <= 7, "the derivation above counts the operations of K ≤ 7");
   Point_refs<D, Recipe::arity> q = p;
   std::swap(q[static_cast<std::size_t>(centre)], q[static_cast<std::size_t>(Recipe::origin)]);
   const auto m = Recipe::template matrix<Tracked_double>(
@@ -315,6 +323,10 @@ std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
   if (det.value() > bound) return sign;
   if (det.value() < -bound) return -sign;
   return std::nullopt;
+}
+template <class Recipe, int D>
+std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
+  return running_error<Recipe, D>(p, central_point<Recipe, D>(p));
 }
 
 /// The running-error stage on its own, where the cascade runs it: nothing
@@ -370,7 +382,8 @@ std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordi
 }
 
 /// Whether x is a normal double with a set bit among the lowest 32 of its
-/// significand, 2^52 + fraction. Then x has fewer than 32 trailing zero bits
+/// significand, 2^52 + fraction (true also for a NaN with such payload
+/// bits, which both callers reject anyway). Then x has fewer than 32 trailing zero bits
 /// (exact_in_double's test) and is no integer of magnitude at most 2^20
 /// (whose significand, times 2^(e − 52) with e ≤ 20, must be a multiple of
 /// 2^32): both questions answered from the bits, without the frexp and

@@ -26,7 +26,8 @@
 //   e_{x·y} = |x̂|·e_y + |ŷ|·e_x + e_x·e_y + u·|r̂|.
 // The bounds are themselves computed in double: every one is a sum of
 // products of nonnegative terms, so the computed bound is at least the exact
-// one times (1 − u)^m, m the operations on its longest path; the caller
+// one times (1 − u)^m, m the rounded operations of its whole computation (a
+// term e_x·e_y carries the roundings of both operands); the caller
 // multiplies by a margin that covers m (filtered_predicate.hpp). An overflow
 // makes a bound infinite or NaN, which decides nothing (comparisons false).
 #pragma once
