@@ -544,6 +544,22 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   return exact_in_double<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
 }
 
+/// A second stage behind its gate: its answer, counted, or nothing when the
+/// gate is closed or the stage cannot tell.
+template <class Recipe, class Stage, class Evaluate>
+std::optional<Sign> gated_second_stage(Evaluate&& evaluate, std::atomic<std::uint64_t>& counter,
+                                       Slow_path_counts& slow) {
+  Stage_gate& gate = stage_gate<Recipe, Stage>();
+  if (!gate.open()) return std::nullopt;
+  const std::optional<Sign> s = evaluate();
+  gate.record(s.has_value());
+  if (s) {
+    count(counter);
+    ++slow.second_stage;
+  }
+  return s;
+}
+
 /// The stages after an undecided filter, under a guard of the floating-point
 /// environment (they assume round-to-nearest and gradual underflow). Out of
 /// line: the filter decides nearly every call.
@@ -575,23 +591,12 @@ template <class Recipe, int D>
         count(stats.permanent);
         return *s;
       }
-      if (Stage_gate& gate = stage_gate<Recipe, Running_error_stage>(); gate.open()) {
-        const auto s = running_error<Recipe, D>(p);
-        gate.record(s.has_value());
-        if (s) {
-          count(stats.running_error);
-          ++slow.second_stage;
-          return *s;
-        }
-      }
-    } else if (Stage_gate& gate = stage_gate<Recipe, Interval_stage>(); gate.open()) {
-      const auto s = interval<Recipe, D>(p);
-      gate.record(s.has_value());
-      if (s) {
-        count(stats.interval);
-        ++slow.second_stage;
+      if (auto s = gated_second_stage<Recipe, Running_error_stage>([&] { return running_error<Recipe, D>(p); },
+                                                                   stats.running_error, slow))
         return *s;
-      }
+    } else if (auto s = gated_second_stage<Recipe, Interval_stage>([&] { return interval<Recipe, D>(p); },
+                                                                   stats.interval, slow)) {
+      return *s;
     }
   }
   count(stats.exact);
