@@ -79,7 +79,7 @@ bool same_coordinate(const Point_refs<D, N>& p, int j) {
 /// runs without a guard of the environment; the later stages hold one.
 /// `computed` (optional) receives the double determinant when the filter got that far.
 template <class Recipe, int D>
-[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p,
+[[gnu::always_inline]] inline Maybe_sign filter(const Point_refs<D, Recipe::arity>& p,
                                                          double* computed = nullptr);
 
 /// Stage 1's decision from the matrix m that the recipe makes of p and a
@@ -88,7 +88,7 @@ template <class Recipe, int D>
 /// (static_filter.hpp), which has computed both already, decides here what
 /// its own bound leaves, without computing them again.
 template <class Recipe, int D, class Determinant>
-[[gnu::always_inline]] inline std::optional<Sign> filter_decision(const Point_refs<D, Recipe::arity>& p,
+[[gnu::always_inline]] inline Maybe_sign filter_decision(const Point_refs<D, Recipe::arity>& p,
                                                                   const Matrix<double, Recipe::size>& m,
                                                                   Determinant&& determinant_of_m, double* computed) {
   constexpr int K = Recipe::size;
@@ -99,7 +99,7 @@ template <class Recipe, int D, class Determinant>
       // A zero column makes the exact determinant 0 when the points share that
       // coordinate. The computed column says so only under gradual underflow
       // (DAZ reads a subnormal as 0), so the bits decide.
-      if (column_max == 0) return same_coordinate<D, Recipe::arity>(p, j) ? std::optional(ZERO) : std::nullopt;
+      if (column_max == 0) return same_coordinate<D, Recipe::arity>(p, j) ? Maybe_sign(ZERO) : std::nullopt;
       if (!(column_max >= error_bounds::min_column_max && column_max <= error_bounds::max_column_max))
         return std::nullopt;
     }
@@ -113,7 +113,7 @@ template <class Recipe, int D, class Determinant>
 }
 
 template <class Recipe, int D>
-[[gnu::always_inline]] inline std::optional<Sign> filter(const Point_refs<D, Recipe::arity>& p, double* computed) {
+[[gnu::always_inline]] inline Maybe_sign filter(const Point_refs<D, Recipe::arity>& p, double* computed) {
   const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
   return filter_decision<Recipe, D>(p, m, [&] { return determinant<double, Recipe::size>(m); }, computed);
 }
@@ -128,7 +128,7 @@ template <class Recipe, int D>
 /// Otherwise (coordinates of very different magnitudes in one call), nothing.
 // Cold (inputs far from 1): kept out of line so the common path stays small.
 template <class Recipe, int D>
-[[gnu::noinline]] std::optional<Sign> filter_scaled(const Point_refs<D, Recipe::arity>& p, double* computed) {
+[[gnu::noinline]] Maybe_sign filter_scaled(const Point_refs<D, Recipe::arity>& p, double* computed) {
   constexpr int N = Recipe::arity;
   double largest_difference = 0, largest_coordinate = 0;
   for (int i = 0; i < N; ++i)
@@ -184,7 +184,7 @@ constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1
 ///  So |computed| > B proves sign(computed) = sign(det). Tested against GMP
 ///  on every family of test_predicates_vs_gmp.cpp and on points near spheres.
 template <class Recipe, int D>
-std::optional<Sign> permanent_filter(const Point_refs<D, Recipe::arity>& p, double computed) {
+Maybe_sign permanent_filter(const Point_refs<D, Recipe::arity>& p, double computed) {
   constexpr int K = Recipe::size;
   if (std::isnan(computed)) return std::nullopt;
   auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
@@ -308,7 +308,7 @@ int central_point(const Point_refs<D, Recipe::arity>& p) {
 /// near circles and spheres with every point as the centre, and on every
 /// family of test_predicates_vs_gmp.cpp with the chosen one.
 template <class Recipe, int D>
-std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p, int centre) {
+Maybe_sign running_error(const Point_refs<D, Recipe::arity>& p, int centre) {
   constexpr int K = Recipe::size;
   static_assert(K <= 7, "the derivation above counts the operations of K ≤ 7");
   Point_refs<D, Recipe::arity> q = p;
@@ -325,7 +325,7 @@ std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p, int cen
   return std::nullopt;
 }
 template <class Recipe, int D>
-std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
+Maybe_sign running_error(const Point_refs<D, Recipe::arity>& p) {
   return running_error<Recipe, D>(p, central_point<Recipe, D>(p));
 }
 
@@ -333,7 +333,7 @@ std::optional<Sign> running_error(const Point_refs<D, Recipe::arity>& p) {
 /// outside the filter's domain (the filter computed no determinant). Under the
 /// caller's guard of the environment.
 template <class Recipe, int D>
-std::optional<Sign> running_error_in_domain(const Point_refs<D, Recipe::arity>& p) {
+Maybe_sign running_error_in_domain(const Point_refs<D, Recipe::arity>& p) {
   double computed = std::numeric_limits<double>::quiet_NaN();
   (void)filter<Recipe, D>(p, &computed);
   if (std::isnan(computed)) return std::nullopt;
@@ -343,7 +343,7 @@ std::optional<Sign> running_error_in_domain(const Point_refs<D, Recipe::arity>& 
 /// Stage 2b outside the filter's domain: the same determinant in interval
 /// arithmetic (no domain limits).
 template <class Recipe, int D>
-std::optional<Sign> interval(const Point_refs<D, Recipe::arity>& p) {
+Maybe_sign interval(const Point_refs<D, Recipe::arity>& p) {
   const auto m = Recipe::template matrix<Interval>(
       [&](int i, int j) { return Interval((*p[static_cast<std::size_t>(i)])[j]); });
   if (auto s = determinant<Interval, Recipe::size>(m).sign()) return Recipe::sign_adjust * *s;
@@ -370,8 +370,11 @@ Common_scale<Recipe::arity * D> common_scale_of(const Point_refs<D, Recipe::arit
 /// most 125 bits on the common scale, whose differences (< 2^126: exact modulo
 /// 2^128) all fit 62 bits; the lifted column (sums of squares, computed modulo
 /// 2^128) is then exact too (< 8·2^124). Nothing otherwise.
+/// Out of line: inlined into exact(), GCC copied the 128-bit entries through
+/// the stack in halves and reloaded them whole (store-forwarding stalls: points
+/// on a sphere, 3 % of the run).
 template <class Recipe, int D, int N>
-std::optional<Sign> exact_small_entries(const Common_scale<N>& scale, int coordinate_bits) {
+[[gnu::noinline]] Maybe_sign exact_small_entries(const Common_scale<N>& scale, int coordinate_bits) {
   if (coordinate_bits > 125) return std::nullopt;
   Uint128 integers[N];
   for (int k = 0; k < N; ++k) integers[k] = static_cast<Uint128>(scale.small_integer(k));
@@ -504,7 +507,7 @@ Sign exact(const Point_refs<D, Recipe::arity>& p) {
 /// every coordinate cost more than the rest of the stage: grid 10^5, a
 /// fifth of the run).
 template <class Recipe, int D>
-std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p, bool integers) {
+Maybe_sign exact_in_double(const Point_refs<D, Recipe::arity>& p, bool integers) {
   constexpr int K = Recipe::size;
   // q: the exponent of the lowest set bit over all coordinates (x = odd · 2^e).
   int q = integers ? 0 : std::numeric_limits<int>::max();
@@ -540,18 +543,18 @@ std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p, bool 
   return Recipe::sign_adjust * sign_of(det);
 }
 template <class Recipe, int D>
-std::optional<Sign> exact_in_double(const Point_refs<D, Recipe::arity>& p) {
+Maybe_sign exact_in_double(const Point_refs<D, Recipe::arity>& p) {
   return exact_in_double<Recipe, D>(p, small_integer_coordinates<Recipe, D>(p));
 }
 
 /// A second stage behind its gate: its answer, counted, or nothing when the
 /// gate is closed or the stage cannot tell.
 template <class Recipe, class Stage, class Evaluate>
-std::optional<Sign> gated_second_stage(Evaluate&& evaluate, std::atomic<std::uint64_t>& counter,
+Maybe_sign gated_second_stage(Evaluate&& evaluate, std::atomic<std::uint64_t>& counter,
                                        Slow_path_counts& slow) {
   Stage_gate& gate = stage_gate<Recipe, Stage>();
   if (!gate.open()) return std::nullopt;
-  const std::optional<Sign> s = evaluate();
+  const Maybe_sign s = evaluate();
   gate.record(s.has_value());
   if (s) {
     count(counter);

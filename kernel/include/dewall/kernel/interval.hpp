@@ -74,7 +74,7 @@ class Interval {
 
   /// The sign of every value in the interval, or nothing when it contains 0
   /// (or is NaN after an overflow).
-  std::optional<Sign> sign() const {
+  Maybe_sign sign() const {
     if (lo_ > 0) return POSITIVE;
     if (hi_ < 0) return NEGATIVE;
     return std::nullopt;

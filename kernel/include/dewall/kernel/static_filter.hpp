@@ -162,13 +162,13 @@ class Static_filter_d {
 
   /// orientation_d's sign when the static bound proves it (always when
   /// exact(); ZERO only then). \pre the points lie in the box (and on the lattice).
-  [[gnu::always_inline]] std::optional<Sign> orientation(const Orientation_points<D>& p) const {
+  [[gnu::always_inline]] Maybe_sign orientation(const Orientation_points<D>& p) const {
     return decide<Orientation_recipe<D>, D + 1>(p, orientation_bound_);
   }
   /// side_of_oriented_sphere_d's sign (unperturbed) when the static bound
   /// proves it (always when exact(); ZERO only then).
   /// \pre the points lie in the box (and on the lattice).
-  [[gnu::always_inline]] std::optional<Sign> side_of_oriented_sphere(const Sphere_points<D>& p) const {
+  [[gnu::always_inline]] Maybe_sign side_of_oriented_sphere(const Sphere_points<D>& p) const {
     return decide<Side_of_sphere_recipe<D>, D + 2>(p, sphere_bound_);
   }
   /// side_of_oriented_sphere_d's sign (unperturbed), always: the static
@@ -183,13 +183,13 @@ class Static_filter_d {
   /// The same through the static and the semi-static filter only (on the
   /// same determinant): a sign when one of them proves it, else nothing —
   /// for a caller to whom an undecided test costs less than the exact stages.
-  [[gnu::always_inline]] std::optional<Sign> side_of_oriented_sphere_filtered(const Sphere_points<D>& p) const {
+  [[gnu::always_inline]] Maybe_sign side_of_oriented_sphere_filtered(const Sphere_points<D>& p) const {
     return sphere_through_filters<false>(p);
   }
 
  private:
   template <class Recipe, int N>
-  [[gnu::always_inline]] std::optional<Sign> decide(const Point_refs<D, N>& p, double bound) const {
+  [[gnu::always_inline]] Maybe_sign decide(const Point_refs<D, N>& p, double bound) const {
     if (!valid_) return std::nullopt;
     const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
     const double det = determinant<double, Recipe::size>(m);
@@ -199,7 +199,7 @@ class Static_filter_d {
   /// On the lattice, the call's own bound (the derivation's last part):
   /// every sign, zero included, when it holds.
   template <class Recipe>
-  [[gnu::always_inline]] std::optional<Sign> lattice_decision(const Matrix<double, Recipe::size>& m, double det) const {
+  [[gnu::always_inline]] Maybe_sign lattice_decision(const Matrix<double, Recipe::size>& m, double det) const {
     constexpr int K = Recipe::size;
     if (!on_lattice()) return std::nullopt;
     double permanent = stages::factorial_int(K);
@@ -215,7 +215,7 @@ class Static_filter_d {
   /// The static bound's decision on the computed determinant det (the
   /// derivation above), and on a lattice (exact_) every sign, zero included.
   template <class Recipe>
-  [[gnu::always_inline]] std::optional<Sign> static_decision(double det, double bound) const {
+  [[gnu::always_inline]] Maybe_sign static_decision(double det, double bound) const {
     if (det > bound) return Recipe::sign_adjust;
     if (det < -bound) return -Recipe::sign_adjust;
     if (exact_) return det == 0 ? ZERO : det > 0 ? Recipe::sign_adjust : -Recipe::sign_adjust;
@@ -223,7 +223,7 @@ class Static_filter_d {
   }
 
   template <bool Every_stage>
-  [[gnu::always_inline]] std::optional<Sign> sphere_through_filters(const Sphere_points<D>& p) const {
+  [[gnu::always_inline]] Maybe_sign sphere_through_filters(const Sphere_points<D>& p) const {
     using Recipe = Side_of_sphere_recipe<D>;
     if (!valid_) {
       if constexpr (Every_stage) return stages::filtered<Recipe, D>(p);
