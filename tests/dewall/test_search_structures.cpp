@@ -32,24 +32,36 @@ std::vector<Coords<D>> generated(io::Point_kind kind, std::size_t n, std::uint64
 }
 
 template <int D>
-void check_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) {
-  INFO("n = " << coords.size() << ", leaf size " << leaf_size);
-  const detail::Kd_tree<D> tree(coords, leaf_size);
-  // The order is a permutation.
-  std::vector<detail::Index> sorted = tree.order();
+void check_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size, int quickselect_rounds = -1) {
+  INFO("n = " << coords.size() << ", leaf size " << leaf_size << ", quickselect rounds " << quickselect_rounds);
+  std::vector<Coords<D>> at = coords;  // by position once the tree is built
+  std::vector<detail::Index> order(coords.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<detail::Index>(i);
+  const detail::Kd_tree<D> tree(at, order, leaf_size, quickselect_rounds);
+  // The ids moved with their coordinates, and are a permutation.
+  for (std::size_t p = 0; p < order.size(); ++p) REQUIRE(at[p] == coords[order[p]]);
+  std::vector<detail::Index> sorted = order;
   std::sort(sorted.begin(), sorted.end());
   for (std::size_t i = 0; i < sorted.size(); ++i) REQUIRE(sorted[i] == i);
   std::size_t leaves = 0;
   std::vector<int> leaf_hits(coords.size(), 0);
-  for (detail::Index at = 0; at < tree.node_count(); ++at) {
-    const auto& n = tree.node(at);
+  // The order a node splits in: along its box's widest axis, ties broken by the next axes.
+  const auto before = [](const Coords<D>& p, const Coords<D>& q, int axis) {
+    for (int k = 0; k < D; ++k) {
+      const int j = (axis + k) % D;
+      if (p[j] != q[j]) return p[j] < q[j];
+    }
+    return false;
+  };
+  for (detail::Index node = 0; node < tree.node_count(); ++node) {
+    const auto& n = tree.node(node);
     REQUIRE(n.begin < n.end);
     // The box is the tight bounding box of the node's points.
-    Coords<D> lo = coords[tree.order()[n.begin]], hi = lo;
+    Coords<D> lo = at[n.begin], hi = lo;
     for (detail::Index p = n.begin; p < n.end; ++p)
       for (int j = 0; j < D; ++j) {
-        lo[j] = std::min(lo[j], coords[tree.order()[p]][j]);
-        hi[j] = std::max(hi[j], coords[tree.order()[p]][j]);
+        lo[j] = std::min(lo[j], at[p][j]);
+        hi[j] = std::max(hi[j], at[p][j]);
       }
     CHECK(n.lo == lo);
     CHECK(n.hi == hi);
@@ -58,17 +70,27 @@ void check_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) {
       CHECK((n.end - n.begin <= leaf_size || lo == hi));
       for (detail::Index p = n.begin; p < n.end; ++p) {
         ++leaf_hits[p];
-        CHECK(tree.leaf_of(p) == at);
+        CHECK(tree.leaf_of(p) == node);
       }
     } else {
-      // The children split the range in two, and know their parent.
+      // The children split the range in two at its median, and know their parent.
       const auto& a = tree.node(n.first_child);
       const auto& b = tree.node(n.first_child + 1);
       CHECK(a.begin == n.begin);
       CHECK(a.end == b.begin);
       CHECK(b.end == n.end);
-      CHECK(a.parent == at);
-      CHECK(b.parent == at);
+      CHECK(a.end == n.begin + (n.end - n.begin) / 2);
+      CHECK(a.parent == node);
+      CHECK(b.parent == node);
+      int axis = 0;
+      for (int j = 1; j < D; ++j)
+        if (n.hi[j] - n.lo[j] > n.hi[axis] - n.lo[axis]) axis = j;
+      detail::Index largest_left = a.begin, smallest_right = b.begin;
+      for (detail::Index p = a.begin; p < a.end; ++p)
+        if (before(at[largest_left], at[p], axis)) largest_left = p;
+      for (detail::Index p = b.begin; p < b.end; ++p)
+        if (before(at[p], at[smallest_right], axis)) smallest_right = p;
+      CHECK_FALSE(before(at[smallest_right], at[largest_left], axis));
     }
   }
   CHECK(leaves == tree.leaf_count());
@@ -138,6 +160,19 @@ TEMPLATE_TEST_CASE_SIG("kd-tree: ranges, tight boxes and leaves against brute fo
   same.back()[0] = 1;
   check_tree<D>(same, 4);
   check_tree<D>(std::vector<Coords<D>>(1, Coords<D>{}), 8);
+  // The median selections: presorted, reversed, few distinct values; each
+  // also with the quickselect's fallback (std::nth_element on a copy) forced
+  // after 0 and 1 rounds.
+  std::vector<Coords<D>> sorted(3000), reversed, few(3000);
+  for (std::size_t i = 0; i < sorted.size(); ++i)
+    for (int j = 0; j < D; ++j) {
+      sorted[i][j] = static_cast<double>(i) * (j + 1);
+      few[i][j] = static_cast<double>((i * 7 + static_cast<std::size_t>(j)) % 5);
+    }
+  reversed.assign(sorted.rbegin(), sorted.rend());
+  for (const auto* points : {&sorted, &reversed, &few})
+    for (const int rounds : {-1, 0, 1}) check_tree<D>(*points, 8, rounds);
+  check_tree<D>(generated<D>(io::Point_kind::uniform, 700, 18), 3, 0);
 }
 
 TEMPLATE_TEST_CASE_SIG("the ball test never drops a box that meets the closed ball (GMP)", "[search][gmp]", ((int D), D),

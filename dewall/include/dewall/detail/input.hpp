@@ -40,11 +40,11 @@ class Distinct_points {
   }
   std::size_t size() const { return size_; }
   std::size_t operator[](std::size_t k) const { return kept_.empty() ? k : kept_[k]; }
-  /// The list itself, for a caller that works on it.
-  std::vector<std::size_t> to_vector() const {
-    if (!kept_.empty()) return kept_;
-    std::vector<std::size_t> all(size_);
-    for (std::size_t k = 0; k < size_; ++k) all[k] = k;
+  /// The list itself, for a caller that works on it (32-bit: distinct_points
+  /// refuses inputs of 2^32 − 1 points or more).
+  std::vector<std::uint32_t> indices() const {
+    std::vector<std::uint32_t> all(size_);
+    for (std::size_t k = 0; k < size_; ++k) all[k] = static_cast<std::uint32_t>((*this)[k]);
     return all;
   }
 

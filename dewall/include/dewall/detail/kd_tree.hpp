@@ -2,9 +2,10 @@
 //
 // Each node splits its points at the median of its widest axis, down to leaves
 // of at most `leaf_size` points, and records the tight bounding box of its
-// points. The points are renumbered in tree order (`order()`), so every node's
-// points are one range of consecutive local indices and a leaf's coordinates
-// are contiguous in memory: a search reads a leaf as one short array.
+// points. The points are renumbered in tree order (their coordinates and ids
+// permuted in place), so every node's points are one range of consecutive
+// local indices and a leaf's coordinates are contiguous in memory: a search
+// reads a leaf as one short array.
 //
 // Why not the paper's uniform grid: a grid sized by n has about one point per
 // cell on volume data only. On a surface sample most cells are empty and the
@@ -21,8 +22,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <map>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "dewall/detail/coords.hpp"
@@ -46,27 +50,22 @@ class Kd_tree {
 
   Kd_tree() = default;
 
-  /// Builds the tree over `coords` (indexed by point). Afterwards order()[i] is
-  /// the point at position i of the tree order; nodes refer to positions.
-  /// \pre coords is not empty; leaf_size ≥ 1.
-  Kd_tree(const std::vector<Coords<D>>& coords, std::size_t leaf_size) : leaf_size_(std::max<std::size_t>(1, leaf_size)) {
-    // The build permutes (coordinates, index) pairs rather than indices into
-    // `coords`: each comparison of the median selections then reads memory in
-    // order instead of two random points. (The selections remain a visible
-    // share of the 2D hybrid: O(n log n) work where CGAL's 2D is cheap;
-    // docs/engines.md.)
-    std::vector<Item> items(coords.size());
-    for (std::size_t i = 0; i < coords.size(); ++i) items[i] = {coords[i], static_cast<Index>(i)};
+  /// Builds the tree over `coords`, permuting `coords` and `ids` alike into
+  /// tree order (ids[i] then says which point came to position i); nodes
+  /// refer to positions. In place: the build needs no copy of the points
+  /// beside them (the streaming run's peak was that copy: 32 bytes a point
+  /// beside the 24 of the coordinates). \pre coords is not empty and as
+  /// long as ids; leaf_size ≥ 1. `quickselect_rounds` (tests): the rounds
+  /// a median selection may take before its fallback (select), when ≥ 0.
+  Kd_tree(std::vector<Coords<D>>& coords, std::vector<Index>& ids, std::size_t leaf_size, int quickselect_rounds = -1)
+      : leaf_size_(std::max<std::size_t>(1, leaf_size)), quickselect_rounds_(quickselect_rounds) {
     leaf_of_.resize(coords.size());
     count_nodes(coords.size());
     nodes_.resize(subtree_nodes_.at(coords.size()));
     nodes_[0].parent = 0;
-    build(items, 0, 0, static_cast<Index>(coords.size()), 1);
-    order_.resize(coords.size());
-    for (std::size_t i = 0; i < items.size(); ++i) order_[i] = items[i].index;
+    build({coords, ids}, 0, 0, static_cast<Index>(coords.size()), 1);
   }
 
-  const std::vector<Index>& order() const { return order_; }
   const Node& node(Index i) const { return nodes_[i]; }
   std::size_t node_count() const { return nodes_.size(); }
   std::size_t leaf_count() const { return (nodes_.size() + 1) / 2; }
@@ -77,24 +76,82 @@ class Kd_tree {
   const Coords<D>& upper() const { return nodes_[0].hi; }
 
  private:
-  struct Item {
-    Coords<D> x;
-    Index index;
+  /// The points being ordered: coordinates and ids, permuted together.
+  struct Points {
+    std::vector<Coords<D>>& x;
+    std::vector<Index>& id;
+    void swap(Index i, Index j) const {
+      std::swap(x[i], x[j]);
+      std::swap(id[i], id[j]);
+    }
   };
+
+  /// The order a node's median splits in: along `axis`, ties broken by the
+  /// next axes. On a lattice half the points of the median plane then go to
+  /// each side; an arbitrary half would stretch every box below to that
+  /// plane (measured: twice the candidates).
+  static bool before(const Coords<D>& p, const Coords<D>& q, int axis) {
+    if (p[axis] != q[axis]) return p[axis] < q[axis];  // nearly always
+    for (int k = 1; k < D; ++k) {
+      const int j = (axis + k) % D;
+      if (p[j] != q[j]) return p[j] < q[j];
+    }
+    return false;
+  }
+
+  /// std::nth_element's contract on two arrays at once: the point of rank
+  /// `middle` (in before's order) at position middle of [begin, end), none
+  /// after it before it, none before it after it. Quickselect with a
+  /// three-way partition around the median of three (points with equal
+  /// coordinates, possible in kernels more precise than double, are one
+  /// class, so every round removes at least the pivot's); an input that
+  /// defeats the median of three, detected by the round count, is finished
+  /// by std::nth_element on a copy of that range.
+  void select(const Points& p, Index begin, Index middle, Index end, int axis) const {
+    const auto less = [axis](const Coords<D>& a, const Coords<D>& b) { return before(a, b, axis); };
+    int rounds_left = quickselect_rounds_ >= 0 ? quickselect_rounds_ : 2 * static_cast<int>(std::bit_width(end - begin)) + 8;
+    while (end - begin > 8) {
+      if (rounds_left-- == 0) return select_by_copy(p, begin, middle, end, axis);
+      const Index m = begin + (end - begin) / 2;
+      if (less(p.x[m], p.x[begin])) p.swap(m, begin);
+      if (less(p.x[end - 1], p.x[begin])) p.swap(end - 1, begin);
+      if (less(p.x[end - 1], p.x[m])) p.swap(end - 1, m);
+      const Coords<D> pivot = p.x[m];
+      Index lt = begin, i = begin, gt = end;  // [begin, lt) <, [lt, i) =, [gt, end) > pivot
+      while (i < gt) {
+        if (less(p.x[i], pivot)) p.swap(lt++, i++);
+        else if (less(pivot, p.x[i])) p.swap(i, --gt);
+        else ++i;
+      }
+      if (middle < lt) end = lt;
+      else if (middle >= gt) begin = gt;
+      else return;
+    }
+    for (Index i = begin + 1; i < end; ++i)  // insertion sort
+      for (Index j = i; j > begin && less(p.x[j], p.x[j - 1]); --j) p.swap(j, j - 1);
+  }
+  static void select_by_copy(const Points& p, Index begin, Index middle, Index end, int axis) {
+    std::vector<std::pair<Coords<D>, Index>> items;
+    items.reserve(end - begin);
+    for (Index i = begin; i < end; ++i) items.emplace_back(p.x[i], p.id[i]);
+    std::nth_element(items.begin(), items.begin() + (middle - begin), items.end(),
+                     [axis](const auto& a, const auto& b) { return before(a.first, b.first, axis); });
+    for (Index i = begin; i < end; ++i) std::tie(p.x[i], p.id[i]) = items[i - begin];
+  }
 
   // The layout is fixed by the sizes alone: a node's children are a pair at
   // `pair`, then the left child's descendants, then the right child's (the
   // order a serial depth-first build allocates them in). So both halves can be
   // built at once, each knowing where its nodes go.
-  void build(std::vector<Item>& items, Index at, Index begin, Index end, Index pair) {
+  void build(const Points& points, Index at, Index begin, Index end, Index pair) {
     Node& n = nodes_[at];
     n.begin = begin;
     n.end = end;
     n.first_child = 0;
-    n.lo = n.hi = items[begin].x;
+    n.lo = n.hi = points.x[begin];
     for (Index i = begin + 1; i < end; ++i)
       for (int j = 0; j < D; ++j) {
-        const double v = items[i].x[j];
+        const double v = points.x[i][j];
         n.lo[j] = std::min(n.lo[j], v);
         n.hi[j] = std::max(n.hi[j], v);
       }
@@ -109,24 +166,13 @@ class Kd_tree {
       return;
     }
     const Index middle = begin + (end - begin) / 2;
-    // Ties on the axis are broken by the next axes: on a lattice half the
-    // points of the median plane go to each side, and an arbitrary half would
-    // stretch every box below to that plane (measured: twice the candidates).
-    std::nth_element(items.begin() + begin, items.begin() + middle, items.begin() + end,
-                     [axis](const Item& p, const Item& q) {
-                       if (p.x[axis] != q.x[axis]) return p.x[axis] < q.x[axis];  // nearly always
-                       for (int k = 1; k < D; ++k) {
-                         const int j = (axis + k) % D;
-                         if (p.x[j] != q.x[j]) return p.x[j] < q.x[j];
-                       }
-                       return false;
-                     });
+    select(points, begin, middle, end, axis);
     n.first_child = pair;
     nodes_[pair].parent = nodes_[pair + 1].parent = at;
     const Index left_pairs = pair + 2;
     const auto right_pairs = static_cast<Index>(left_pairs + subtree_nodes_.at(middle - begin) - 1);
-    auto left = [&] { build(items, pair, begin, middle, left_pairs); };
-    auto right = [&] { build(items, pair + 1, middle, end, right_pairs); };
+    auto left = [&] { build(points, pair, begin, middle, left_pairs); };
+    auto right = [&] { build(points, pair + 1, middle, end, right_pairs); };
     if (end - begin >= parallel_points) tbb::parallel_invoke(left, right);
     else {
       left();
@@ -155,8 +201,8 @@ class Kd_tree {
   // Subtrees of fewer points are built serially (a task costs more than that).
   static constexpr Index parallel_points = 1 << 15;
   std::size_t leaf_size_ = 8;
+  int quickselect_rounds_ = -1;
   std::map<std::size_t, std::size_t> subtree_nodes_;  // read-only while building
-  std::vector<Index> order_;
   std::vector<Index> leaf_of_;  // by position: a search starts at a face vertex's leaf
   std::vector<Node> nodes_;
 };

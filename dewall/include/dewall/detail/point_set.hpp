@@ -24,57 +24,48 @@ struct Point_set {
   using Point = typename K::Point_d;
 
   K kernel;
-  std::vector<const Point*> points;     // by local index
+  std::span<const Point> input;         // the caller's points
   /// A bound on |x − x̂| for every coordinate x of every point and its value x̂
   /// in `coords` (scaled alike): 0 when the approximations are exact, +∞ when
   /// the kernel states no bound (kernel/concepts.hpp).
   double coordinate_error = 0;
   std::vector<Coords<D>> coords;        // approximate coordinates, by local index
-  std::vector<std::size_t> input_index; // local index -> index in the caller's input
+  std::vector<Index> input_index;       // local index -> index in `input`
   Kd_tree<D> tree;                      // over positions = local indices
 
-  Point_set(K k, std::vector<const Point*> pts, std::vector<std::size_t> input, std::size_t leaf_size)
-      : kernel(k), points(std::move(pts)), coords(approximate(k, points, coordinate_error)), input_index(std::move(input)),
-        tree(coords, leaf_size) {
-    // Renumber the points in tree order: local index i is the tree's position
-    // i, so a node's points and their coordinates are contiguous in memory.
-    // One array at a time: a second copy of one, not of all three, at any
-    // moment (the saving at the peak: docs/engines.md).
-    const std::vector<Index>& order = tree.order();
-    permute(points, order);
-    permute(coords, order);
-    permute(input_index, order);
-  }
+  /// The points input[distinct[k]], renumbered in tree order: local index i is
+  /// the tree's position i, so a node's points and their coordinates are
+  /// contiguous in memory. 28 bytes a point besides the tree in 3D (the
+  /// points themselves are the caller's, reached through input_index): the
+  /// streaming run's memory is mostly this.
+  Point_set(K k, std::span<const Point> points, std::vector<Index> distinct, std::size_t leaf_size)
+      : kernel(k), input(points), coords(approximate(k, points, distinct, coordinate_error)),
+        input_index(std::move(distinct)), tree(coords, input_index, leaf_size) {}
 
-  std::size_t size() const { return points.size(); }
+  const Point& point(Index i) const { return input[input_index[i]]; }
+  std::size_t size() const { return coords.size(); }
   std::span<const Coords<D>> coords_for_checks() const { return coords; }
 
   kernel::Sign orientation(const Face<D>& f, Index q) const {
     std::array<const Point*, D + 1> s;
-    for (int i = 0; i < D; ++i) s[i] = points[f[i]];
-    s[D] = points[q];
+    for (int i = 0; i < D; ++i) s[i] = &point(f[i]);
+    s[D] = &point(q);
     return kernel.orientation_d_object()(s);
   }
   /// Perturbed: is q inside the circumsphere of the positively oriented simplex s?
   bool inside_sphere(const Simplex<D>& s, Index q) const {
     std::array<const Point*, D + 2> p;
-    for (int i = 0; i <= D; ++i) p[i] = points[s[i]];
-    p[D + 1] = points[q];
+    for (int i = 0; i <= D; ++i) p[i] = &point(s[i]);
+    p[D + 1] = &point(q);
     return kernel.side_of_oriented_sphere_d_object()(p) == kernel::ON_POSITIVE_SIDE;
   }
 
  private:
-  template <class T>
-  static void permute(std::vector<T>& v, const std::vector<Index>& order) {
-    std::vector<T> permuted(v.size());
-    for (std::size_t i = 0; i < order.size(); ++i) permuted[i] = v[order[i]];
-    v.swap(permuted);
-  }
-
-  static std::vector<Coords<D>> approximate(const K& k, const std::vector<const Point*>& pts, double& error) {
-    std::vector<Coords<D>> c(pts.size());
+  static std::vector<Coords<D>> approximate(const K& k, std::span<const Point> points,
+                                            const std::vector<Index>& distinct, double& error) {
+    std::vector<Coords<D>> c(distinct.size());
     const auto to_double = k.approximate_coordinates_object();
-    for (std::size_t i = 0; i < pts.size(); ++i) c[i] = to_double(*pts[i]);
+    for (std::size_t i = 0; i < distinct.size(); ++i) c[i] = to_double(points[distinct[i]]);
     constexpr double relative = kernel::approximate_coordinates_error<K>;
     if constexpr (relative == 0) {
       scale_to_unit(c);

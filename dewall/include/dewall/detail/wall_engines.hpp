@@ -48,11 +48,9 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
                              Simplex_output<K::dimension>& output, const Hybrid<K::dimension>* hybrid) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
-  std::vector<std::size_t> input =
-      hybrid && hybrid->distinct ? hybrid->distinct->to_vector() : distinct_points<K>(k, points).to_vector();
-  std::vector<const typename K::Point_d*> refs(input.size());
-  for (std::size_t i = 0; i < input.size(); ++i) refs[i] = &points[input[i]];
-  const Point_set<K> ps(k, std::move(refs), std::move(input), options.points_per_leaf);
+  const Point_set<K> ps(k, points,
+                        hybrid && hybrid->distinct ? hybrid->distinct->indices() : distinct_points<K>(k, points).indices(),
+                        options.points_per_leaf);
   require_full_dimension<D>(ps.coords_for_checks());
 
   std::optional<Search_budget> budget = hybrid ? hybrid->budget : std::nullopt;
