@@ -41,8 +41,9 @@
 //        across their facets through p: in 2D and 3D through a table indexed
 //        by the facets' directed keys (glue_star_directed), above 3D and for
 //        very large cavities by their D − 1 other vertices in a hash table.
-//  4. Both cores: from zoned_insertion_threshold points on, step 3 runs in
-//     rounds of two zones (half-spaces), each a task inserting only where
+//  4. Both cores: from zoned_insertion_threshold points on (the sample from
+//     half as many), step 3 runs in rounds of two zones (half-spaces),
+//     each a task inserting only where
 //     its walk and cavity stay in its own cells (insert_in_zones: why the
 //     tasks share nothing and the result is the same for any thread count).
 // Expected O(n log n) for points in general position (BRIO), the walk and the
@@ -237,7 +238,8 @@ class Incremental_delaunay {
   bool static_filter_exact() const { return static_filter_.exact(); }
   /// Points after build()'s sample from which they are inserted in zones
   /// (insert_in_zones: in parallel, the same cells and slots for any number
-  /// of threads); tests lower it.
+  /// of threads), and twice the sample's rest from which that is zoned too
+  /// (insert_sample); tests lower it.
   std::size_t zoned_insertion_threshold = std::size_t{1} << 16;
   /// A zone whose first zone_probe points wait more than a quarter of the
   /// time gives up the round, and the rounds end: on a torus cut through its
@@ -657,8 +659,9 @@ class Incremental_delaunay {
   }
 
   /// Inserts points D + 1 … sample − 1 (after start): its own first sixteenth
-  /// one by one, the rest in zones when that is large enough for them (from
-  /// 2^19 points on: at 10^7 the sample's 625,000 points inserted on one core
+  /// one by one, the rest in zones when that is large enough for them (half
+  /// zoned_insertion_threshold: from about 5.6·10^5 points on by default; at
+  /// 10^7 the sample's 625,000 points inserted on one core
   /// were a ninth of a two-core run, at 10^6 its 62,500 a tenth — 0.10 of
   /// 1.07 s; zoned, 0.07 s, the one-thread time unchanged). The zones' result
   /// is the same for any thread count (insert_in_zones), so the output stays

@@ -29,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "dewall/detail/assert.hpp"
 #include "dewall/detail/coords.hpp"
 #include "dewall/detail/face.hpp"
 #include "dewall/kernel/floating_point.hpp"
@@ -59,6 +60,7 @@ class Kd_tree {
   /// a median selection may take before its fallback (select), when ≥ 0.
   Kd_tree(std::vector<Coords<D>>& coords, std::vector<Index>& ids, std::size_t leaf_size, int quickselect_rounds = -1)
       : leaf_size_(std::max<std::size_t>(1, leaf_size)), quickselect_rounds_(quickselect_rounds) {
+    DEWALL_ASSERT(!coords.empty() && coords.size() == ids.size());
     leaf_of_.resize(coords.size());
     count_nodes(coords.size());
     nodes_.resize(subtree_nodes_.at(coords.size()));
