@@ -2,10 +2,11 @@
 // (incremental_engine.hpp).
 #include "incremental_engine.hpp"
 
-#include <array>
-#include <cstdint>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
+
+#include <array>
+#include <cstdint>
 #include <vector>
 
 #include "dewall/detail/incremental_delaunay.hpp"

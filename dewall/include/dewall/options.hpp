@@ -107,8 +107,9 @@ struct Options {
   /// searches of any task of DeWall's recursion have cost more than this many
   /// candidate points per search on average, a predicate evaluation that the
   /// filters leave to the exact stage costing 100 candidates (a second stage,
-  /// running error or intervals, 10), counted from the first search, with an allowance of 64
-  /// searches' worth plus 4^(D−2)·n candidates (handover_rule.hpp). A search
+  /// running error or intervals, 10), counted from the first search, with an
+  /// allowance of 64 searches' worth plus 4^(D−2)·n candidates
+  /// (handover_rule.hpp). A search
   /// must look at every point near the sphere it proves empty: the average
   /// stays small on volume data and clusters and grows by orders of magnitude
   /// on points near one sphere or surface, where the incremental construction

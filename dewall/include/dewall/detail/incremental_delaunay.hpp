@@ -42,10 +42,10 @@
 //        by the facets' directed keys (glue_star_directed), above 3D and for
 //        very large cavities by their D − 1 other vertices in a hash table.
 //  4. Both cores: from zoned_insertion_threshold points on (the sample from
-//     half as many), step 3 runs in rounds of two zones (half-spaces),
-//     each a task inserting only where
-//     its walk and cavity stay in its own cells (insert_in_zones: why the
-//     tasks share nothing and the result is the same for any thread count).
+//     half as many), step 3 runs in rounds of two zones (half-spaces), each
+//     a task inserting only where its walk and cavity stay in its own cells
+//     (insert_in_zones: why the tasks share nothing and the result is the
+//     same for any thread count).
 // Expected O(n log n) for points in general position (BRIO), the walk and the
 // cavities O(1) per point on well-spread data.
 #pragma once
@@ -661,11 +661,11 @@ class Incremental_delaunay {
   /// Inserts points D + 1 … sample − 1 (after start): its own first sixteenth
   /// one by one, the rest in zones when that is large enough for them (half
   /// zoned_insertion_threshold: from about 5.6·10^5 points on by default; at
-  /// 10^7 the sample's 625,000 points inserted on one core
-  /// were a ninth of a two-core run, at 10^6 its 62,500 a tenth — 0.10 of
-  /// 1.07 s; zoned, 0.07 s, the one-thread time unchanged). The zones' result
-  /// is the same for any thread count (insert_in_zones), so the output stays
-  /// the same bytes.
+  /// 10^7 the sample's 625,000 points inserted on one core were a ninth of a
+  /// two-core run, at 10^6 its 62,500 a tenth — 0.10 of 1.07 s; zoned,
+  /// 0.07 s, the one-thread time unchanged). The zones' result is the same
+  /// for any thread count (insert_in_zones), so the output stays the same
+  /// bytes.
   void insert_sample(std::size_t sample, const Box<D>& box) {
     const std::size_t inner = std::max<std::size_t>(sample / 16, D + 1);
     if (sample - inner >= zoned_insertion_threshold / 2) {
