@@ -116,7 +116,8 @@ class Built_simplices {
   void push_back(const Built_simplex<D>& s) {
     if (blocks_.empty() || blocks_.back().size() == block_capacity) {
       if (stream_ && !blocks_.empty()) {
-        flush();
+        stream_->put(blocks_.back());  // and the block is filled again
+        blocks_.back().clear();
       } else {
         blocks_.emplace_back();
         blocks_.back().reserve(block_capacity);
@@ -125,11 +126,14 @@ class Built_simplices {
     blocks_.back().push_back(s);
     ++size_;
   }
-  /// Streaming: passes on the simplices not passed on yet.
+  /// Streaming: passes on the simplices not passed on yet, and frees the
+  /// block: a task flushes before its subproblems run and when it ends, and
+  /// kept, its block would be held meanwhile (streaming 10^6 points on two
+  /// threads: 9 MB of such blocks at the peak).
   void flush() {
-    if (!stream_ || blocks_.empty() || blocks_.back().empty()) return;
-    stream_->put(blocks_.back());
-    blocks_.back().clear();
+    if (!stream_ || blocks_.empty()) return;
+    if (!blocks_.back().empty()) stream_->put(blocks_.back());
+    blocks_.clear();
   }
   /// Appends `other`'s simplices after this one's (streaming: passes them on).
   void append(Built_simplices&& other) {

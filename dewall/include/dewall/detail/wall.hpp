@@ -205,6 +205,10 @@ class Wall_builder {
       const Face<D> f = p.afl.pop();
       lists(f).update(f);
     }
+    // Empty now, but its table would be held while the halves below run
+    // (streaming 10^6 points on two threads: 10 of the 22 MB of active face
+    // lists at the peak).
+    p.afl = Active_face_list<D>();
     const bool seeded = region_may_take_wall(p) && wall_from_slab(p, cut.split, lists, task);
     if (p.depth == 0 && !seeded)
       add_simplex(first_simplex(ps_, task.search, p.points, cut.split), -1, 0, lists, task);
