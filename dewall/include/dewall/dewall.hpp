@@ -159,12 +159,14 @@ class Sink_output final : public Simplex_output<D> {
 /// progress); the set is the same, and with one thread (Options::threads = 1)
 /// so is the order, given the same Options::region_points (by default
 /// streaming takes smaller regions above 131072 points, and Engine::automatic
-/// collecting builds up to automatic_whole_limit points without regions). The sink is never called concurrently, but it
-/// may be called from a thread other than the caller's (the incremental
-/// construction hands its cells over from a pipeline), and when streamed
-/// with more threads from several, in an order that depends on their timing. A sink with a member reserve(n) is told the number of
-/// simplices before the first one when that is known (collected output, and
-/// the incremental engine's). A sink with a member input_no_longer_read() is
+/// collecting builds up to automatic_whole_limit points without regions).
+/// The sink is never called concurrently, but it may be called from a thread
+/// other than the caller's (the incremental construction hands its cells
+/// over from a pipeline), and when streamed with more threads from several,
+/// in an order that depends on their timing. A sink with a member reserve(n)
+/// is told the number of simplices before the first one when that is known
+/// (collected output, and the incremental engine's). A sink with a member
+/// input_no_longer_read() is
 /// told when the engine will read `points` no more (the incremental
 /// construction, once it has copied them in its own order): a caller that
 /// owns them may free them then (the tool does: at 10^6 points, 24 MB of its
