@@ -166,11 +166,10 @@ class Sink_output final : public Simplex_output<D> {
 /// in an order that depends on their timing. A sink with a member reserve(n)
 /// is told the number of simplices before the first one when that is known
 /// (collected output, and the incremental engine's). A sink with a member
-/// input_no_longer_read() is
-/// told when the engine will read `points` no more (the incremental
-/// construction, once it has copied them in its own order): a caller that
-/// owns them may free them then (the tool does: at 10^6 points, 24 MB of its
-/// peak).
+/// input_no_longer_read() is told when the engine will read `points` no
+/// more (the incremental construction, once it has copied them in its own
+/// order): a caller that owns them may free them then (the tool does: at
+/// 10^6 points, 24 MB of its peak).
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D. An exception from the sink ends
 /// the triangulation and is passed on.
