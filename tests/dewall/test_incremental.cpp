@@ -375,6 +375,37 @@ TEST_CASE("incremental: 2D fans of every size glue as CGAL's cells", "[increment
   }
 }
 
+TEST_CASE("incremental: 2D points beyond the hull start along it, with CGAL's cells", "[incremental]") {
+  // Points on a circle (every one a hull vertex, every sphere test a near
+  // tie): each cavity starts at a hull edge found along the hull, not by the
+  // walk. Then the same circle around points inside it, and two circles:
+  // hull walks that fail (the point inside) or succeed far from the start.
+  std::mt19937_64 rng(38);
+  std::uniform_real_distribution<double> angle(0, 2 * 3.141592653589793);
+  auto circle = [&](std::size_t n, double radius) {
+    std::vector<dewall::kernel::Point_d<2>> points;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = angle(rng);
+      points.push_back({{radius * std::cos(t), radius * std::sin(t)}});
+    }
+    return points;
+  };
+  const auto on_circle = circle(3000, 1);
+  Incremental_delaunay<2> dt;
+  REQUIRE(dt.build(on_circle));
+  CHECK(dt.statistics().hull_starts > on_circle.size() * 9 / 10);
+  CHECK(dt.statistics().walk_steps < on_circle.size());
+  check_against_cgal<2>(on_circle);
+  check_against_cgal<2>(circle(300, 1), true);
+
+  auto around = circle(1500, 1);
+  for (const auto& p : dewall::test::uniform<2>(1500, rng)) around.push_back({{p[0] - 0.5, p[1] - 0.5}});
+  check_against_cgal<2>(around);
+  auto two = circle(1000, 1);
+  for (const auto& p : circle(1000, 0.999)) two.push_back(p);
+  check_against_cgal<2>(two);
+}
+
 TEST_CASE("incremental: insert_more after build gives the triangulation of all the points", "[incremental]") {
   std::mt19937_64 rng(36);
   check_insert_more<2>(dewall::test::uniform<2>(1000, rng));
