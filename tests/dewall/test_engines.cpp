@@ -7,6 +7,7 @@
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 #include <optional>
@@ -462,8 +463,12 @@ TEST_CASE("engines: a sink told the input is no longer read may destroy it, and 
     p.insert(p.end(), p.begin(), p.begin() + 200);  // the distinct list is then kept
     return p;
   }();
-  for (const auto& given : {generated<3>(dewall::io::Point_kind::uniform, 1500, 13), with_duplicates}) {
-    for (const Engine engine : {Engine::automatic, Engine::incremental, Engine::cgal, Engine::dewall}) {
+  // A lattice too: every sphere test of the walls a tie their filters leave
+  // to the kernel's predicates, which then read the points.
+  for (const auto& given :
+       {generated<3>(dewall::io::Point_kind::uniform, 1500, 13), with_duplicates,
+        generated<3>(dewall::io::Point_kind::grid, 1000, 0)}) {
+    for (const Engine engine : {Engine::automatic, Engine::incremental, Engine::cgal, Engine::dewall, Engine::hybrid}) {
       Options options;
       options.engine = engine;
       const auto expected = dewall::triangulate<3>(given, options).simplices;
@@ -485,8 +490,9 @@ TEST_CASE("engines: a sink told the input is no longer read may destroy it, and 
       INFO("engine " << dewall::engine_name(engine) << ", " << given.size() << " points");
       CHECK(got == expected);
       // Told once by the project's incremental construction (the automatic
-      // engine's choice for so few points), never by the others.
-      CHECK(sink.told == (engine == Engine::automatic || engine == Engine::incremental ? 1 : 0));
+      // engine's choice for so few points) and by the walls (their point set
+      // copies the points: Point_set::reads_input), never by CGAL's.
+      CHECK(sink.told == (engine == Engine::cgal ? 0 : 1));
     }
   }
 }
@@ -522,4 +528,57 @@ TEST_CASE("engines: after the hybrid hands over, and in 4D, the sink is told onc
   regions.region_points = 512;
   check(generated<3>(dewall::io::Point_kind::sphere, 4000, 14), regions, Engine::incremental);
   check(generated<4>(dewall::io::Point_kind::uniform, 600, 15), Options{}, Engine::incremental);
+}
+
+TEST_CASE("engines: streamed, the walls tell the sink before they build, and a hand-over builds the same simplices",
+          "[engine]") {
+  // Engine::automatic streamed with regions: the walls tell the sink as soon
+  // as their point set holds the points; on uniform points they build
+  // everything, on a sphere the budget is spent and the incremental
+  // construction builds from the points the walls give back (exactly: here
+  // scaled by 3·2^-602, which the point set scales back up, and with
+  // duplicates). The sink overwrites its points when told.
+  const auto check = [](const std::vector<dewall::kernel::Point_d<3>>& given, Engine expected_engine, int threads) {
+    Options options;
+    options.region_points = 512;
+    options.stream = true;
+    options.parallel_depth = threads > 1 ? 2 : 0;
+    auto sorted = [](std::vector<dewall::Simplex<3>> s) {
+      std::sort(s.begin(), s.end());
+      return s;
+    };
+    const auto expected = dewall::triangulate<3>(given, options);
+    CHECK(expected.statistics.engine == expected_engine);
+    auto points = given;
+    struct Sink {
+      std::vector<dewall::kernel::Point_d<3>>& points;
+      std::vector<dewall::Simplex<3>> out;
+      int told = 0;
+      std::size_t simplices_when_told = 0;
+      void input_no_longer_read() {
+        ++told;
+        simplices_when_told = out.size();
+        for (auto& p : points) p.x.fill(std::numeric_limits<double>::quiet_NaN());
+      }
+      void operator()(const dewall::Simplex<3>& s) { out.push_back(s); }
+    } sink{points};
+    tbb::task_arena arena(threads);
+    const auto st = arena.execute([&] {
+      return dewall::triangulate_to<dewall::kernel::Filtered_kernel_d<3>>(
+          std::span<const dewall::kernel::Point_d<3>>(points), sink, options);
+    });
+    CHECK(st.engine == expected_engine);
+    CHECK(sink.told == 1);
+    CHECK(sink.simplices_when_told == 0);
+    CHECK(sorted(sink.out) == sorted(expected.simplices));
+  };
+  auto scaled_sphere = generated<3>(dewall::io::Point_kind::sphere, 4000, 14);
+  for (auto& p : scaled_sphere)
+    for (double& x : p.x) x *= 0x1.8p-601;
+  scaled_sphere.insert(scaled_sphere.end(), scaled_sphere.begin() + 100, scaled_sphere.begin() + 400);
+  for (const int threads : {1, 2}) {
+    check(generated<3>(dewall::io::Point_kind::uniform, 5000, 16), Engine::hybrid, threads);
+    check(generated<3>(dewall::io::Point_kind::sphere, 4000, 14), Engine::incremental, threads);
+    check(scaled_sphere, Engine::incremental, threads);
+  }
 }

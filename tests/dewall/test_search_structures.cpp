@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <map>
 #include <random>
@@ -13,6 +14,7 @@
 #include "dewall/detail/active_face_list.hpp"
 #include "dewall/detail/face_side_filter.hpp"
 #include "dewall/detail/kd_tree.hpp"
+#include "dewall/detail/point_set.hpp"
 #include "dewall/detail/simplex_sphere.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "support/gmp_reference.hpp"
@@ -367,4 +369,34 @@ TEMPLATE_TEST_CASE_SIG("Active_face_list: the paper's Update and pop against a m
     REQUIRE(model.erase(detail::face_key<D>(f)) == 1);
   }
   CHECK(afl.empty());
+}
+
+TEST_CASE("Point_set: the project's kernel reads its own scaled copies and gives the input back bit for bit",
+          "[search][point-set]") {
+  // Coordinates of every magnitude the scaling keeps exact (subnormal
+  // products included), negative zeros, and a duplicate: the point set
+  // scales them by one power of two; restore_input must give each distinct
+  // point back exactly, the duplicate (not in the distinct list) as NaN.
+  using K = dewall::kernel::Filtered_kernel_d<3>;
+  static_assert(!dewall::detail::Point_set<K>::reads_input);
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (const double scale : {1.0, 3.0, 0x1.8p-601, 0x1p-1030, 0x1.4p700}) {
+    std::vector<dewall::kernel::Point_d<3>> points(300);
+    for (auto& p : points)
+      for (double& x : p.x) x = unit(rng) * scale;
+    points[7].x = {-0.0, 0.0, -0.0};
+    points.push_back(points[11]);  // a duplicate, left out of the distinct list
+    std::vector<dewall::detail::Index> distinct(points.size() - 1);
+    for (std::size_t i = 0; i < distinct.size(); ++i) distinct[i] = static_cast<dewall::detail::Index>(i);
+    const dewall::detail::Point_set<K> ps(K{}, points, distinct, 8);
+    INFO("scale " << scale << ", scale_exponent " << ps.scale_exponent);
+    const auto restored = ps.restore_input();
+    REQUIRE(restored.size() == points.size());
+    for (std::size_t i = 0; i < distinct.size(); ++i)
+      for (std::size_t j = 0; j < 3; ++j)
+        CHECK(std::bit_cast<std::uint64_t>(restored[i].x[j]) == std::bit_cast<std::uint64_t>(points[i].x[j]));
+    CHECK(std::isnan(restored.back().x[0]));
+    if (scale != 1.0) CHECK(ps.scale_exponent != 0);  // the copies really are scaled
+  }
 }

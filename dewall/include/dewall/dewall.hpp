@@ -128,7 +128,9 @@ class Sink_output final : public Simplex_output<D> {
   void expect(std::size_t count) override {
     if constexpr (requires { sink_.reserve(count); }) sink_.reserve(count);
   }
-  void input_no_longer_read() override {
+  void input_no_longer_read() override {  // the sink hears it once (Simplex_output)
+    if (told_) return;
+    told_ = true;
     if constexpr (requires { sink_.input_no_longer_read(); }) sink_.input_no_longer_read();
   }
   void put(std::span<const Built_simplex<D>> block) override {
@@ -140,6 +142,7 @@ class Sink_output final : public Simplex_output<D> {
 
  private:
   Sink& sink_;
+  bool told_ = false;
 };
 
 }  // namespace detail
@@ -166,10 +169,12 @@ class Sink_output final : public Simplex_output<D> {
 /// in an order that depends on their timing. A sink with a member reserve(n)
 /// is told the number of simplices before the first one when that is known
 /// (collected output, and the incremental engine's). A sink with a member
-/// input_no_longer_read() is told when the engine will read `points` no
+/// input_no_longer_read() is told once, when the engine will read `points` no
 /// more (the incremental construction, once it has copied them in its own
-/// order): a caller that owns them may free them then (the tool does: at
-/// 10^6 points, 24 MB of its peak).
+/// order; the walls, with the project's kernel, once their search structure
+/// has: an engine taking over from them takes the points from it): a caller
+/// that owns them may free them then (the tool does: at 10^6 points, 24 MB
+/// of its peak). Never while the sink is called.
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
 /// points, or points that do not span E^D. An exception from the sink ends
 /// the triangulation and is passed on.

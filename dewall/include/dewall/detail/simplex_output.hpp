@@ -37,10 +37,13 @@ class Simplex_output {
   /// first put (collected output): a receiver may reserve room.
   virtual void expect(std::size_t /*count*/) {}
   virtual void put(std::span<const Built_simplex<D>> block) = 0;
-  /// Called at most once, when the engine will not read the input points
-  /// again (the project's incremental construction, once it has copied them
-  /// in its insertion order, before it inserts any): a receiver whose caller
-  /// owns the points may free them.
+  /// Called when the engine will not read the input points again (the
+  /// project's incremental construction, once it has copied them in its
+  /// insertion order, before it inserts any; the walls over the project's
+  /// kernel, once their point set has copied them: Point_set::reads_input):
+  /// a receiver whose caller owns the points may free them. Before any put().
+  /// (An engine taking over from the walls reads the copy they restored and
+  /// tells that copy's owner instead: automatic_engine.hpp.)
   virtual void input_no_longer_read() {}
 
  protected:

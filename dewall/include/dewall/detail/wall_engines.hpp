@@ -36,6 +36,10 @@ struct Hybrid {
   std::optional<Search_budget> budget = std::nullopt;
   /// distinct_points(points), when the caller computed it.
   const Distinct_points* distinct = nullptr;
+  /// Engine::automatic: when the budget is spent after the output was told
+  /// the input is no longer read (Point_set::reads_input), the input as the
+  /// walls restored it for the engine that takes over (Point_set::restore_input).
+  std::vector<kernel::Point_d<D>>* restored_input = nullptr;
 };
 
 /// Hands the Delaunay simplices of `points` (input indices, positively
@@ -48,10 +52,14 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
                              Simplex_output<K::dimension>& output, const Hybrid<K::dimension>* hybrid) {
   constexpr int D = K::dimension;
   const kernel::Fp_environment_guard guard;
-  const Point_set<K> ps(k, points,
-                        hybrid && hybrid->distinct ? hybrid->distinct->indices() : distinct_points<K>(k, points).indices(),
-                        options.points_per_leaf);
-  require_full_dimension<D>(ps.coords_for_checks());
+  std::optional<const Point_set<K>> ps(
+      std::in_place, k, points,
+      hybrid && hybrid->distinct ? hybrid->distinct->indices() : distinct_points<K>(k, points).indices(),
+      options.points_per_leaf);
+  require_full_dimension<D>(ps->coords_for_checks());
+  // The caller's points are read no more (Point_set::reads_input): a
+  // hand-over takes them from the point set (restore_input, below).
+  if constexpr (!Point_set<K>::reads_input) output.input_no_longer_read();
 
   std::optional<Search_budget> budget = hybrid ? hybrid->budget : std::nullopt;
   // Streaming with a budget: held until the hand-over is decided (handover_rule.hpp).
@@ -60,26 +68,41 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
   if (streamed_decision) budget->decide_with(streamed_decision);
   std::optional<Simplex_stream<D>> stream;
   if (options.stream) stream.emplace(output, streamed_decision != nullptr);
-  Wall_builder<K> builder(ps, options.parallel_depth, budget, hybrid ? &hybrid->regions : nullptr,
-                          region_points_for(options, ps.size()), streamed_decision);
-  std::vector<Index> all(ps.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
-  Built_simplices<D> built(stream ? &*stream : nullptr);
-  builder.run(all, built);
-  if (stream) stream->release();  // (no region was kept: nothing can hand over now)
-  else built.hand_to(output);
+  Wall_stats stats;
+  Search_stats search_stats;
+  try {
+    Wall_builder<K> builder(*ps, options.parallel_depth, budget, hybrid ? &hybrid->regions : nullptr,
+                            region_points_for(options, ps->size()), streamed_decision);
+    std::vector<Index> all(ps->size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
+    Built_simplices<D> built(stream ? &*stream : nullptr);
+    builder.run(all, built);
+    if (stream) stream->release();  // (no region was kept: nothing can hand over now)
+    else built.hand_to(output);
+    stats = builder.stats();
+    search_stats = builder.search_stats();
+  } catch (const Search_budget_spent&) {
+    // The walls are gone (their tasks' memory with them); the point set
+    // gives the input back, then goes too, before the engine that takes over
+    // builds anything.
+    if constexpr (!Point_set<K>::reads_input) {
+      if (hybrid && hybrid->restored_input) *hybrid->restored_input = ps->restore_input();
+      ps.reset();
+    }
+    throw;
+  }
 
   Statistics st;
   st.input_points = points.size();
-  st.distinct_points = ps.size();
-  st.simplices = builder.stats().simplices;
-  st.first_wall_simplices = builder.stats().first_wall_simplices;
-  st.recursion_depth = builder.stats().max_depth;
-  st.simplex_searches = builder.search_stats().searches;
-  st.nodes_visited = builder.search_stats().nodes_visited;
-  st.candidates_tested = builder.search_stats().candidates;
-  st.tree_leaves = ps.tree.leaf_count();
-  st.region_simplices = builder.stats().region_simplices;
+  st.distinct_points = ps->size();
+  st.simplices = stats.simplices;
+  st.first_wall_simplices = stats.first_wall_simplices;
+  st.recursion_depth = stats.max_depth;
+  st.simplex_searches = search_stats.searches;
+  st.nodes_visited = search_stats.nodes_visited;
+  st.candidates_tested = search_stats.candidates;
+  st.tree_leaves = ps->tree.leaf_count();
+  st.region_simplices = stats.region_simplices;
   st.engine = hybrid ? Engine::hybrid : Engine::dewall;
   return st;
 }
