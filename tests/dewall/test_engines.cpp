@@ -460,7 +460,8 @@ TEST_CASE("engines: a sink told the input is no longer read may destroy it, and 
   // overwrites them with NaN instead, so that any later read would show.
   const auto with_duplicates = [] {
     auto p = generated<3>(dewall::io::Point_kind::uniform, 1500, 13);
-    p.insert(p.end(), p.begin(), p.begin() + 200);  // the distinct list is then kept
+    const std::vector<dewall::kernel::Point_d<3>> again(p.begin(), p.begin() + 200);
+    p.insert(p.end(), again.begin(), again.end());  // the distinct list is then kept
     return p;
   }();
   // A lattice too: every sphere test of the walls a tie their filters leave
@@ -575,7 +576,8 @@ TEST_CASE("engines: streamed, the walls tell the sink before they build, and a h
   auto scaled_sphere = generated<3>(dewall::io::Point_kind::sphere, 4000, 14);
   for (auto& p : scaled_sphere)
     for (double& x : p.x) x *= 0x1.8p-601;
-  scaled_sphere.insert(scaled_sphere.end(), scaled_sphere.begin() + 100, scaled_sphere.begin() + 400);
+  const std::vector<dewall::kernel::Point_d<3>> again(scaled_sphere.begin() + 100, scaled_sphere.begin() + 400);
+  scaled_sphere.insert(scaled_sphere.end(), again.begin(), again.end());
   for (const int threads : {1, 2}) {
     check(generated<3>(dewall::io::Point_kind::uniform, 5000, 16), Engine::hybrid, threads);
     check(generated<3>(dewall::io::Point_kind::sphere, 4000, 14), Engine::incremental, threads);

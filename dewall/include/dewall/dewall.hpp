@@ -133,6 +133,7 @@ class Sink_output final : public Simplex_output<D> {
     told_ = true;
     if constexpr (requires { sink_.input_no_longer_read(); }) sink_.input_no_longer_read();
   }
+  bool frees_input() const override { return requires { sink_.input_no_longer_read(); }; }
   void put(std::span<const Built_simplex<D>> block) override {
     for (const Built_simplex<D>& s : block) {
       if constexpr (std::is_invocable_v<Sink&, const Simplex<D>&, int>) sink_(s.vertices, static_cast<int>(s.wall_level));

@@ -45,6 +45,10 @@ class Simplex_output {
   /// (An engine taking over from the walls reads the copy they restored and
   /// tells that copy's owner instead: automatic_engine.hpp.)
   virtual void input_no_longer_read() {}
+  /// Whether input_no_longer_read() lets the caller free the points. If not,
+  /// the walls keep the caller's points for a hand-over instead of making a
+  /// copy of their own to give back (wall_engines.hpp).
+  virtual bool frees_input() const { return false; }
 
  protected:
   ~Simplex_output() = default;

@@ -57,9 +57,12 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
       hybrid && hybrid->distinct ? hybrid->distinct->indices() : distinct_points<K>(k, points).indices(),
       options.points_per_leaf);
   require_full_dimension<D>(ps->coords_for_checks());
-  // The caller's points are read no more (Point_set::reads_input): a
-  // hand-over takes them from the point set (restore_input, below).
-  if constexpr (!Point_set<K>::reads_input) output.input_no_longer_read();
+  // The caller's points are read no more (Point_set::reads_input): when the
+  // output's caller frees them, a hand-over takes them from the point set
+  // (restore_input, below); else it reads the caller's, and nothing is copied.
+  const bool input_released = !Point_set<K>::reads_input && output.frees_input() &&
+                              (!hybrid || !hybrid->budget || hybrid->restored_input);
+  if (input_released) output.input_no_longer_read();
 
   std::optional<Search_budget> budget = hybrid ? hybrid->budget : std::nullopt;
   // Streaming with a budget: held until the hand-over is decided (handover_rule.hpp).
@@ -82,11 +85,12 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
     stats = builder.stats();
     search_stats = builder.search_stats();
   } catch (const Search_budget_spent&) {
-    // The walls are gone (their tasks' memory with them); the point set
-    // gives the input back, then goes too, before the engine that takes over
-    // builds anything.
+    // The walls are gone (their tasks' memory with them), then what the
+    // stream held; the point set gives the input back and goes too, before
+    // the engine that takes over builds anything.
+    stream.reset();
     if constexpr (!Point_set<K>::reads_input) {
-      if (hybrid && hybrid->restored_input) *hybrid->restored_input = ps->restore_input();
+      if (input_released && hybrid && hybrid->restored_input) *hybrid->restored_input = ps->restore_input();
       ps.reset();
     }
     throw;
