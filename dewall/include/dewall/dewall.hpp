@@ -128,9 +128,7 @@ class Sink_output final : public Simplex_output<D> {
   void expect(std::size_t count) override {
     if constexpr (requires { sink_.reserve(count); }) sink_.reserve(count);
   }
-  void input_no_longer_read() override {  // the sink hears it once (Simplex_output)
-    if (told_) return;
-    told_ = true;
+  void input_no_longer_read() override {
     if constexpr (requires { sink_.input_no_longer_read(); }) sink_.input_no_longer_read();
   }
   bool frees_input() const override { return requires { sink_.input_no_longer_read(); }; }
@@ -143,7 +141,6 @@ class Sink_output final : public Simplex_output<D> {
 
  private:
   Sink& sink_;
-  bool told_ = false;
 };
 
 }  // namespace detail

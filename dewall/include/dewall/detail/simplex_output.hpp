@@ -37,7 +37,7 @@ class Simplex_output {
   /// first put (collected output): a receiver may reserve room.
   virtual void expect(std::size_t /*count*/) {}
   virtual void put(std::span<const Built_simplex<D>> block) = 0;
-  /// Called when the engine will not read the input points again (the
+  /// Called at most once, when the engine will not read the input points again (the
   /// project's incremental construction, once it has copied them in its
   /// insertion order, before it inserts any; the walls over the project's
   /// kernel, once their point set has copied them: Point_set::reads_input):
