@@ -9,6 +9,7 @@
 
 #include <cfenv>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <utility>
 #include <vector>
@@ -151,6 +152,64 @@ TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero",
     CHECK(dewall::kernel::side_of_oriented_sphere_d<3>(s) == expected[k].second);
   }
   CHECK(decided > 0);  // the filter was exercised, not only the later stages
+  CHECK(Hostile_environment::in_force());
+}
+
+TEST_CASE("the permanent stage holds on the filter's own entries in every rounding mode", "[kernel][fp-environment]") {
+  // filtered_after_static runs stage 2a inline on the 2D sphere test's matrix
+  // as the caller's environment computed it, without a guard. Near ties: four
+  // points on a circle or on a short arc of it (rounded, half of them moved by
+  // an ulp or two) at scales 2^-90 … 2^90; and three points 2^-530 apart with
+  // a query far off (products subnormal, flushed by FTZ).
+  using P = Point_d<2>;
+  using Recipe = dewall::kernel::Side_of_sphere_recipe<2>;
+  namespace stages = dewall::kernel::stages;
+  std::mt19937_64 rng(20261127);
+  std::uniform_real_distribution<double> angle(0, 6.283185307179586);
+  std::uniform_int_distribution<int> scale(-90, 90), nudge(-2, 2), coordinate(-8, 8);
+  std::vector<std::array<P, 4>> cases;
+  for (int k = 0; k < 4000; ++k) {
+    const int s = scale(rng);
+    std::array<P, 4> c;
+    const double base = angle(rng), spread = k % 4 < 2 ? 1.0 : 0x1p-8;  // half of them on a short arc
+    for (auto& p : c) {
+      const double a = base + spread * angle(rng);
+      p = P{{std::ldexp(std::cos(a), s), std::ldexp(std::sin(a), s)}};
+      for (int j = 0; j < 2 && k % 2; ++j)
+        for (int n = nudge(rng); n != 0; n += n > 0 ? -1 : 1) p[j] = std::nextafter(p[j], n > 0 ? 1e300 : -1e300);
+    }
+    cases.push_back(c);
+  }
+  for (int k = 0; k < 1000; ++k) {
+    std::array<P, 4> c;
+    for (int i = 0; i < 3; ++i) c[static_cast<std::size_t>(i)] = P{{0x1p-530 * coordinate(rng), 0x1p-530 * coordinate(rng)}};
+    c[3] = P{{double(coordinate(rng)), double(coordinate(rng))}};
+    cases.push_back(c);
+  }
+  std::vector<int> expected;
+  for (const auto& c : cases) expected.push_back(dewall::test::gmp_side_of_oriented_sphere<2>({c[0], c[1], c[2]}, c[3]));
+  const Hostile_environment hostile;  // FTZ and DAZ; the rounding mode set below
+  for (const int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO, FE_TONEAREST}) {
+    std::fesetround(mode);
+    int decided = 0, undecided = 0;
+    for (std::size_t k = 0; k < cases.size(); ++k) {
+      const auto& c = cases[k];
+      const dewall::kernel::Sphere_points<2> refs{&c[0], &c[1], &c[2], &c[3]};
+      double computed = std::numeric_limits<double>::quiet_NaN();
+      if (stages::filter<Recipe, 2>(refs, &computed) || std::isnan(computed)) continue;  // not stage 2a's call
+      const auto m = Recipe::matrix<double>([&](int i, int j) { return (*refs[static_cast<std::size_t>(i)])[j]; });
+      INFO("mode " << mode << ", case " << k);
+      if (const auto s = stages::permanent_decision<Recipe, 2>(m, computed)) {
+        ++decided;
+        CHECK(*s == expected[k]);
+      } else {
+        ++undecided;
+      }
+    }
+    CHECK(decided > 500);    // the stage was exercised
+    CHECK(undecided > 100);  // and the near ties were near enough to leave some
+  }
+  std::fesetround(FE_UPWARD);
   CHECK(Hostile_environment::in_force());
 }
 

@@ -116,7 +116,7 @@ Sign orientation_d(const Orientation_points<D>& p) {
   PREFIX template std::optional<Sign> orientation_d_running_error<D>(const Orientation_points<D>&); \
   PREFIX template Sign orientation_d_exact<D>(const Orientation_points<D>&);                   \
   PREFIX template Sign orientation_d<D>(const Orientation_points<D>&);                         \
-  PREFIX template Sign stages::after_filter<Orientation_recipe<D>, D>(const Orientation_points<D>&, double);
+  PREFIX template Sign stages::after_filter<Orientation_recipe<D>, D>(const Orientation_points<D>&, double, bool);
 #define DEWALL_EXTERN_ORIENTATION(D) DEWALL_ORIENTATION_INSTANTIATION(extern, D)
 DEWALL_FOR_EACH_DIMENSION(DEWALL_EXTERN_ORIENTATION)
 #undef DEWALL_EXTERN_ORIENTATION

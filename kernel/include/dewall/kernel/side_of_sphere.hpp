@@ -141,7 +141,7 @@ Oriented_side side_of_oriented_sphere_d_sos(const Sphere_points<D>& p) {
   PREFIX template Sign side_of_oriented_sphere_d_exact<D>(const Sphere_points<D>&);                   \
   PREFIX template Oriented_side side_of_oriented_sphere_d<D>(const Sphere_points<D>&);                \
   PREFIX template Oriented_side side_of_oriented_sphere_d_sos<D>(const Sphere_points<D>&);            \
-  PREFIX template Sign stages::after_filter<Side_of_sphere_recipe<D>, D>(const Sphere_points<D>&, double);
+  PREFIX template Sign stages::after_filter<Side_of_sphere_recipe<D>, D>(const Sphere_points<D>&, double, bool);
 #define DEWALL_EXTERN_SIDE_OF_SPHERE(D) DEWALL_SIDE_OF_SPHERE_INSTANTIATION(extern, D)
 DEWALL_FOR_EACH_DIMENSION(DEWALL_EXTERN_SIDE_OF_SPHERE)
 #undef DEWALL_EXTERN_SIDE_OF_SPHERE
