@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "dewall/detail/assert.hpp"
 #include "dewall/error.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/sign.hpp"
@@ -34,9 +35,11 @@ namespace dewall::detail {
 class Distinct_points {
  public:
   Distinct_points() = default;
-  /// `kept`: ascending indices of an input of `input_size` points.
-  Distinct_points(std::vector<std::size_t> kept, std::size_t input_size) : size_(kept.size()) {
-    if (kept.size() != input_size) kept_ = std::move(kept);  // else it is the identity
+  /// `distinct` of an input of `input_size` points; `kept`: their ascending
+  /// indices, or empty when every point is distinct (the identity).
+  Distinct_points(std::vector<std::size_t> kept, std::size_t distinct, std::size_t input_size) : size_(distinct) {
+    DEWALL_ASSERT(kept.size() == (distinct == input_size ? 0 : distinct));
+    if (distinct != input_size) kept_ = std::move(kept);
   }
   std::size_t size() const { return size_; }
   std::size_t operator[](std::size_t k) const { return kept_.empty() ? k : kept_[k]; }
@@ -68,13 +71,20 @@ Distinct_points distinct_points(const K& k, std::span<const typename K::Point_d>
         throw Invalid_input(i, "has a non-finite coordinate (NaN or infinity)");
   }
   const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object(), coords);
-  std::vector<std::size_t> kept;
-  for (std::size_t i = 0; i < first.size(); ++i)
-    if (first[i] == i) kept.push_back(i);
-  if (kept.size() < static_cast<std::size_t>(D + 1))
+  std::size_t distinct = 0;
+  for (std::size_t i = 0; i < first.size(); ++i) distinct += first[i] == i ? 1 : 0;
+  if (distinct < static_cast<std::size_t>(D + 1))
     throw Invalid_input("need at least " + std::to_string(D + 1) + " distinct points in dimension " +
-                        std::to_string(D) + ", got " + std::to_string(kept.size()));
-  return Distinct_points(std::move(kept), points.size());
+                        std::to_string(D) + ", got " + std::to_string(distinct));
+  // The list only when some point repeats (a list pushed back point by point
+  // and then dropped took 2 % of 10^4 points' construction).
+  std::vector<std::size_t> kept;
+  if (distinct != points.size()) {
+    kept.reserve(distinct);
+    for (std::size_t i = 0; i < first.size(); ++i)
+      if (first[i] == i) kept.push_back(i);
+  }
+  return Distinct_points(std::move(kept), distinct, points.size());
 }
 
 /// An affine basis grown one point at a time, exactly: the row echelon form of
