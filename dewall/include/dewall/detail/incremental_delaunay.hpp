@@ -78,6 +78,7 @@
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/input.hpp"
+#include "dewall/detail/scratch_list.hpp"
 #include "dewall/detail/spatial_order.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/orientation.hpp"
@@ -273,7 +274,7 @@ class Incremental_delaunay {
     find_cavity<false>(serial_, q, infinite);
     clear_marks(serial_);
     static_filter_ = filter;
-    std::vector<std::size_t> cells = serial_.cavity;
+    std::vector<std::size_t> cells(serial_.cavity.begin(), serial_.cavity.end());
     std::sort(cells.begin(), cells.end());
     return cells;
   }
@@ -1237,9 +1238,9 @@ class Incremental_delaunay {
     std::size_t last = 0;         // a finite cell the last insertion made: the next walk starts there
     std::ptrdiff_t finite_change = 0;  // finite cells made minus destroyed, not yet in finite_cells_
     Incremental_statistics stats;
-    std::vector<std::size_t> cavity;
+    Scratch_list<std::size_t> cavity;
     std::vector<Boundary_facet> boundary;
-    std::vector<Index> new_cells;  // the slot of each boundary facet's new cell
+    Scratch_list<Index> new_cells;  // the slot of each boundary facet's new cell
     Ridge_table ridges;
     std::vector<Local> local = std::vector<Local>(D <= 3 ? local_table_size : 0);
     std::uint32_t local_stamp = 0;
