@@ -159,8 +159,12 @@ TEST_CASE("the permanent stage holds on the filter's own entries in every roundi
   // filtered_after_static runs stage 2a inline on the 2D sphere test's matrix
   // as the caller's environment computed it, without a guard. Near ties: four
   // points on a circle or on a short arc of it (rounded, half of them moved by
-  // an ulp or two) at scales 2^-90 … 2^90; and three points 2^-530 apart with
-  // a query far off (products subnormal, flushed by FTZ).
+  // an ulp or two) at scales 2^-90 … 2^90. Underflow inside the filter's
+  // domain: the query at the origin, one point 2^-530 from it (its lifted
+  // entry 2^-1060, subnormal: flushed by FTZ) or 2^-1065 (its coordinates
+  // subnormal: read as 0 by DAZ), the other two at integer coordinates, so
+  // that every column's largest entry is about 1 and the determinant, about
+  // 2^-530 in the first case, is above the stage's floor.
   using P = Point_d<2>;
   using Recipe = dewall::kernel::Side_of_sphere_recipe<2>;
   namespace stages = dewall::kernel::stages;
@@ -180,10 +184,13 @@ TEST_CASE("the permanent stage holds on the filter's own entries in every roundi
     }
     cases.push_back(c);
   }
+  const std::size_t tiny_first = cases.size();
   for (int k = 0; k < 1000; ++k) {
+    const double e = k % 2 ? 0x1p-1065 : 0x1p-530;
     std::array<P, 4> c;
-    for (int i = 0; i < 3; ++i) c[static_cast<std::size_t>(i)] = P{{0x1p-530 * coordinate(rng), 0x1p-530 * coordinate(rng)}};
-    c[3] = P{{double(coordinate(rng)), double(coordinate(rng))}};
+    for (const int i : {0, 2}) c[static_cast<std::size_t>(i)] = P{{double(coordinate(rng)), double(coordinate(rng))}};
+    c[1] = P{{e * coordinate(rng), e * coordinate(rng)}};
+    c[3] = P{{0, 0}};  // the query
     cases.push_back(c);
   }
   std::vector<int> expected;
@@ -191,7 +198,7 @@ TEST_CASE("the permanent stage holds on the filter's own entries in every roundi
   const Hostile_environment hostile;  // FTZ and DAZ; the rounding mode set below
   for (const int mode : {FE_UPWARD, FE_DOWNWARD, FE_TOWARDZERO, FE_TONEAREST}) {
     std::fesetround(mode);
-    int decided = 0, undecided = 0;
+    int decided = 0, undecided = 0, decided_with_underflow = 0;
     for (std::size_t k = 0; k < cases.size(); ++k) {
       const auto& c = cases[k];
       const dewall::kernel::Sphere_points<2> refs{&c[0], &c[1], &c[2], &c[3]};
@@ -200,17 +207,18 @@ TEST_CASE("the permanent stage holds on the filter's own entries in every roundi
       const auto m = Recipe::matrix<double>([&](int i, int j) { return (*refs[static_cast<std::size_t>(i)])[j]; });
       INFO("mode " << mode << ", case " << k);
       if (const auto s = stages::permanent_decision<Recipe, 2>(m, computed)) {
-        ++decided;
+        ++(k < tiny_first ? decided : decided_with_underflow);
         CHECK(*s == expected[k]);
-      } else {
+      } else if (k < tiny_first) {
         ++undecided;
       }
     }
-    CHECK(decided > 500);    // the stage was exercised
-    CHECK(undecided > 100);  // and the near ties were near enough to leave some
+    CHECK(decided > 500);    // the stage was exercised on near ties
+    CHECK(undecided > 100);  // and they were near enough to leave some
+    CHECK(decided_with_underflow > 50);
+    CHECK(std::fegetround() == mode);  // the stage changed nothing in the environment
   }
   std::fesetround(FE_UPWARD);
-  CHECK(Hostile_environment::in_force());
 }
 
 TEMPLATE_TEST_CASE_SIG("triangulate and certify are exact under flush-to-zero and upward rounding",

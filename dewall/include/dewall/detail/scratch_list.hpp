@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <type_traits>
+#include <utility>
 #include <vector>
+
+#include "dewall/detail/assert.hpp"
 
 namespace dewall::detail {
 
@@ -20,6 +23,19 @@ class Scratch_list {
   static_assert(std::is_trivially_copyable_v<T>);
 
  public:
+  Scratch_list() = default;
+  Scratch_list(const Scratch_list&) = default;
+  Scratch_list& operator=(const Scratch_list&) = default;
+  /// A moved-from list is empty (its size would otherwise outlive its storage).
+  Scratch_list(Scratch_list&& other) noexcept
+      : storage_(std::move(other.storage_)), size_(std::exchange(other.size_, 0)) {}
+  Scratch_list& operator=(Scratch_list&& other) noexcept {
+    storage_ = std::move(other.storage_);
+    size_ = std::exchange(other.size_, 0);
+    return *this;
+  }
+
+  /// \pre x is not an element of this list (growing would move it).
   [[gnu::always_inline]] void push_back(const T& x) {
     if (size_ == storage_.size()) [[unlikely]]
       grow();
@@ -28,8 +44,14 @@ class Scratch_list {
   void clear() { size_ = 0; }
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
-  T& operator[](std::size_t k) { return storage_[k]; }
-  const T& operator[](std::size_t k) const { return storage_[k]; }
+  T& operator[](std::size_t k) {
+    DEWALL_EXPENSIVE_ASSERT(k < size_);
+    return storage_[k];
+  }
+  const T& operator[](std::size_t k) const {
+    DEWALL_EXPENSIVE_ASSERT(k < size_);
+    return storage_[k];
+  }
   const T* begin() const { return storage_.data(); }
   const T* end() const { return storage_.data() + size_; }
 

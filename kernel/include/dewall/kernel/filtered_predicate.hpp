@@ -167,9 +167,9 @@ constexpr int factorial_int(int k) { return k <= 1 ? 1 : k * factorial_int(k - 1
 /// Derivation (error_bounds.hpp, steps 1, 2 and 4):
 ///  * Step 2 before its last inequality: |fl(det) − det| ≤ γ_N·perm(|X|), X
 ///    the exact entries, for the filter's computation in any rounding mode.
-///  * P̂ = perm(|X̂|) computed here (round to nearest, under the caller's
-///    guard) from recomputed entries: every entry and monomial is a product of
-///    nonnegative terms, so P̂ ≥ perm(|X|)·(1 − γ_{c(K) + K(D+2)}) (each
+///  * P̂ = perm(|X̂|) computed from the entries in any rounding mode (u = 2^-52
+///    bounds each operation's error in all of them): every entry and monomial
+///    is a product of nonnegative terms, so P̂ ≥ perm(|X|)·(1 − γ_{c(K) + K(D+2)}) (each
 ///    computed |x̂| ≥ |x|·(1 − γ_{D+2}), each monomial and sum rounded at most
 ///    c(K) times), at least perm(|X|)·(1 − 2^-45) for K ≤ 7. The (1 + 2^-30)
 ///    margin of permanent_epsilon covers that and the two roundings of the
@@ -640,7 +640,8 @@ template <class Recipe, int D>
     count(Recipe::stats().filter);
     return *s;
   }
-  // Stage 2a inline too, for 3×3 matrices (the 2D sphere test): on points
+  // Stage 2a inline too, for 3×3 matrices (the 2D sphere test: only the
+  // sphere test's static filter calls this function): on points
   // on a circle every sphere test of a finite cell is a near tie that it
   // decides more often than not (10^4 points: 15,169 of 26,361), and asked
   // here, on the matrix in registers, it costs no call, no guard and no
