@@ -76,8 +76,8 @@ Distinct_points distinct_points(const K& k, std::span<const typename K::Point_d>
   if (distinct < static_cast<std::size_t>(D + 1))
     throw Invalid_input("need at least " + std::to_string(D + 1) + " distinct points in dimension " +
                         std::to_string(D) + ", got " + std::to_string(distinct));
-  // The list only when some point repeats (a list pushed back point by point
-  // and then dropped took 2 % of 10^4 points' construction).
+  // The list only when some point repeats (otherwise it would be the
+  // identity, built point by point only to be dropped).
   std::vector<std::size_t> kept;
   if (distinct != points.size()) {
     kept.reserve(distinct);

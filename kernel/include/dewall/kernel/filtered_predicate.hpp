@@ -645,7 +645,7 @@ template <class Recipe, int D>
   // on a circle every sphere test of a finite cell is a near tie that it
   // decides more often than not (10^4 points: 15,169 of 26,361), and asked
   // here, on the matrix in registers, it costs no call, no guard and no
-  // second matrix (the construction −7 %; uniform 2D unchanged). Larger
+  // second matrix (that construction −6 %; uniform 2D unchanged). Larger
   // matrices keep it out of line: the 3D cavity search grew and got slower
   // (a torus with noise, 10^6 points, where it never runs: +1.7 %).
   if constexpr (Recipe::size <= 3) {
