@@ -35,8 +35,8 @@ class Scratch_list {
     return *this;
   }
 
-  /// \pre x is not an element of this list (growing would move it).
-  [[gnu::always_inline]] void push_back(const T& x) {
+  /// By value: x may be one of the list's own elements (growing moves them).
+  [[gnu::always_inline]] void push_back(T x) {
     if (size_ == storage_.size()) [[unlikely]]
       grow();
     storage_[size_++] = x;
