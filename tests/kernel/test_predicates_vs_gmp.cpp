@@ -436,6 +436,10 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
   };
   int near_cases = 0, permanent_decided = 0, permanent_left = 0, running_error_decided = 0, recentred = 0,
       mismatches = 0;
+  // Of the near-sphere calls alone (not the exactly cospherical or extreme
+  // sets, which the stage must leave): what the permanent stage left, and
+  // how many of those the running-error stage decided.
+  int near_left = 0, near_decided = 0;
   // Decisions with another point than the recipe's origin as the rows' origin
   // (the exchange's sign flip), over every choice of that point.
   std::array<int, 2> other_origin_decided{};  // sphere, orientation
@@ -492,7 +496,10 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
       x = std::nextafter(x, coin(rng) % 2 ? 2.0 : -2.0);
     }
     ++near_cases;
+    const int before_left = permanent_left, before_decided = running_error_decided;
     permanent_decided += run(points);
+    near_left += permanent_left - before_left;
+    near_decided += running_error_decided - before_decided;
   }
   // Exactly cospherical integer points, up to the 2^20 of the exact stage's
   // integer path, and integer lattices (every sphere test may be 0).
@@ -543,6 +550,11 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
   INFO("running-error stage decided " << running_error_decided << " of " << permanent_left << ", " << recentred
                                       << " with another origin");
   CHECK(running_error_decided > permanent_left / 8);
+  // In 2D its minors come from exact products (plane_determinant): on
+  // near-circle points it leaves only the near ties of rows long against
+  // their spacing (measured: 2,158 of 2,171).
+  INFO("near the sphere: decided " << near_decided << " of " << near_left);
+  if constexpr (D == 2) CHECK(near_decided * 10 > near_left * 8);
   CHECK(recentred > running_error_decided / 4);
   INFO("decided with another origin, sphere " << other_origin_decided[0] << ", orientation "
                                              << other_origin_decided[1]);
@@ -630,6 +642,63 @@ TEST_CASE("stage gates: after restart_interval_gates, a batch's slow-path counts
   (void)run(closing);
   restart_interval_gates();
   CHECK(run(batch) == fresh);
+}
+
+// The 2D running-error stage's minors (running_error.hpp,
+// difference_of_products): both forms, the fused one (std::fma: the
+// instruction, or glibc's exact software fma where the processor has none)
+// and the split one where it is compiled, against the exact value in GMP
+// rationals, on products that nearly cancel (the minors of short, nearly
+// parallel rows), at magnitudes from the condition's 2^-484 to 2^300, with
+// operands carrying errors of their own. The bound must hold every time and
+// be near u·|result| on the cancelling products (it is why the stage exists).
+TEST_CASE("difference_of_products: the error bound holds, as GMP computes it, and is u-relative when products cancel",
+          "[gmp][predicates]") {
+  const auto seed = dewall::test::test_seed(0xd0f);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  std::uniform_real_distribution<double> mantissa(0.5, 1), unit(-1, 1);
+  std::uniform_int_distribution<int> exponent(-484 + 4, 300), coin(0, 3);
+  int cases = 0, violations = 0, tight = 0, cancelling = 0;
+  std::string report;
+  const auto check = [&](const char* form, const Tracked_double& got, const mpq_class& exact) {
+    ++cases;
+    const mpq_class error = abs(mpq_class(got.value()) - exact);
+    // The bound as computed is taken with the stage's margin 1 + 2^-30.
+    if (error > mpq_class(got.error()) * mpq_class(1 + 0x1p-30) && ++violations <= mismatches_shown)
+      report += std::string(form) + ": error " + std::to_string(error.get_d()) + " above " +
+                std::to_string(got.error()) + "\n";
+  };
+  const auto near_one = [&] { return 1 + std::ldexp(unit(rng), -12 * (1 + coin(rng) % 3)); };
+  for (int c = 0; c < 20000; ++c) {
+    const int e = exponent(rng);
+    // a·b − c·d with c·d near a·b: (a, c) and (d, b) nearly proportional,
+    // as two short rows of neighbouring points on a circle; one case in four
+    // cancels down to the roundings of c and d.
+    const auto signed_mantissa = [&] { return (coin(rng) % 2 ? 1 : -1) * mantissa(rng); };
+    const double a = std::ldexp(signed_mantissa(), e), b = std::ldexp(signed_mantissa(), e);
+    const double t = near_one();
+    const double cc = a * t, d = coin(rng) == 0 ? b / t : b * near_one();
+    // Some operands carry an error of their own (a difference that rounded),
+    // the exact operands anywhere within it.
+    const double err = coin(rng) == 0 ? std::ldexp(std::fabs(a), -53) : 0;
+    const Tracked_double ta(a, err), tb(b, 0), tc(cc, 0), td(d, err);
+    const mpq_class exact_a = mpq_class(a) + (coin(rng) % 2 ? mpq_class(err) : -mpq_class(err));
+    const mpq_class exact_d = mpq_class(d) - mpq_class(err);
+    const mpq_class exact = exact_a * mpq_class(b) - mpq_class(cc) * exact_d;
+    if (abs(exact) * 1024 < abs(mpq_class(a) * mpq_class(b))) ++cancelling;
+    const Tracked_double fused = difference_of_products_fused(ta, tb, tc, td);
+    check("fused", fused, exact);
+    if (err == 0 && exact != 0 && mpq_class(fused.error()) < abs(exact) * mpq_class(4 * 0x1p-53)) ++tight;
+#if !defined(__FP_FAST_FMA) && !defined(__FMA__)
+    check("split", difference_of_products_split(ta, tb, tc, td), exact);
+#endif
+  }
+  INFO(violations << " violations of " << cases << "\n" << report);
+  CHECK(violations == 0);
+  INFO(tight << " bounds within 4u of |result|, " << cancelling << " cancelling products");
+  CHECK(cancelling > 5000);
+  CHECK(tight > 5000);
 }
 
 TEST_CASE("lowest_bit_exponent: x = odd · 2^e gives e, at every exponent", "[predicates]") {

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cmath>
+#include <utility>
 
 #include "dewall/kernel/floating_point.hpp"
 
@@ -85,6 +86,69 @@ struct Exact_coordinate {
     return {r, std::fabs(error)};
   }
 };
+
+/// a·b − c·d, its products formed exactly and only what remains rounded:
+/// where the two products nearly cancel (the 2×2 minors of short, nearly
+/// parallel rows: neighbouring points on a circle) the error is about
+/// u·|a·b − c·d| instead of u·|a·b|. Two forms of one computation; the
+/// operands' own errors reach the result as in operator*, and the caller
+/// ensures the condition under which the products' parts are exact, for the
+/// computed values â, b̂, ĉ, d̂: each is zero or has magnitude in
+/// [2^-484, 2^995). (Then the exponents of any two satisfy e + e' ≥ −970, so
+/// every part of a product below is a multiple of ulp·ulp' ≥ 2^-1074 with at
+/// most 53 significant bits, represented exactly even when subnormal, and
+/// the error-free transformations hold as they do without underflow; 2^995
+/// keeps Veltkamp's splitting from overflowing.)
+///
+/// Fused (Kahan's algorithm, with an FMA): w = fl(ĉ·d̂), e = fma(−ĉ, d̂, w) =
+/// w − ĉ·d̂ exactly, f̂ = fma(â, b̂, −w) = fl(â·b̂ − w), r̂ = fl(f̂ + e). As
+/// â·b̂ − ĉ·d̂ = (â·b̂ − w) + e, the two roundings leave |r̂ − (â·b̂ − ĉ·d̂)| ≤
+/// u·(|f̂| + |r̂|). No contraction can change it: its products are fma calls.
+///
+/// Split (without an FMA): â·b̂ = p + p' and ĉ·d̂ = q + q' exactly (TwoProduct
+/// by Veltkamp's splitting into 26-bit halves: Dekker, "A floating-point
+/// technique for extending the available precision", 1971), r̂ = fl(fl(p − q)
+/// + fl(p' − q')): |r̂ − (â·b̂ − ĉ·d̂)| ≤ u·(|fl(p − q)| + |fl(p' − q')| + |r̂|).
+/// Compiled only where the compiler has no fused instruction to contract
+/// the splitting's products into (a contracted split is not Veltkamp's).
+[[gnu::always_inline]] inline double inherited_product_error(const Tracked_double& a, const Tracked_double& b) {
+  return std::fabs(a.value()) * b.error() + std::fabs(b.value()) * a.error() + a.error() * b.error();
+}
+[[gnu::always_inline]] inline Tracked_double difference_of_products_fused(const Tracked_double& a,
+                                                                        const Tracked_double& b,
+                                                                        const Tracked_double& c,
+                                                                        const Tracked_double& d) {
+  const double w = c.value() * d.value();
+  const double e = std::fma(-c.value(), d.value(), w);
+  const double f = std::fma(a.value(), b.value(), -w);
+  const double r = f + e;
+  return {r, inherited_product_error(a, b) + inherited_product_error(c, d) +
+                 Tracked_double::unit_roundoff * (std::fabs(f) + std::fabs(r))};
+}
+#if !defined(__FP_FAST_FMA) && !defined(__FMA__)
+/// Veltkamp's splitting: x = head + tail, each of at most 26 significant bits.
+[[gnu::always_inline]] inline std::pair<double, double> split_double(double x) {
+  const double scaled = (0x1p27 + 1) * x;
+  const double head = scaled - (scaled - x);
+  return {head, x - head};
+}
+[[gnu::always_inline]] inline Tracked_double difference_of_products_split(const Tracked_double& a,
+                                                                        const Tracked_double& b,
+                                                                        const Tracked_double& c,
+                                                                        const Tracked_double& d) {
+  const auto exact_product = [](double x, double y) {
+    const double high = x * y;
+    const auto [xh, xl] = split_double(x);
+    const auto [yh, yl] = split_double(y);
+    return std::pair{high, ((xh * yh - high) + xh * yl + xl * yh) + xl * yl};
+  };
+  const auto [p, p_low] = exact_product(a.value(), b.value());
+  const auto [q, q_low] = exact_product(c.value(), d.value());
+  const double high = p - q, low = p_low - q_low, r = high + low;
+  return {r, inherited_product_error(a, b) + inherited_product_error(c, d) +
+                 Tracked_double::unit_roundoff * (std::fabs(high) + std::fabs(low) + std::fabs(r))};
+}
+#endif
 
 }  // namespace dewall::kernel
 DEWALL_FLOATING_POINT_CODE_END
