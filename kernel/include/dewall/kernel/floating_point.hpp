@@ -11,7 +11,9 @@
 // Contraction of a·b + c into one fused multiply-add (-ffp-contract=fast, the
 // GCC default in GNU modes with -march=native) is harmless: an FMA is the
 // unfused evaluation with the product's rounding error δ set to 0, and every
-// bound here holds for any |δ| ≤ u, so for δ = 0 too.
+// bound here holds for any |δ| ≤ u, so for δ = 0 too. (The one exception,
+// Veltkamp's splitting in running_error.hpp, is compiled only for targets
+// without an FMA instruction, where nothing can be contracted.)
 //
 // Two things can break the assumptions, and each is handled where it arises:
 //  * Compile flags of the translation unit (-ffast-math, -Ofast,

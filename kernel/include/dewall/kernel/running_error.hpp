@@ -94,23 +94,32 @@ struct Exact_coordinate {
 /// operands' own errors reach the result as in operator*, and the caller
 /// ensures the condition under which the products' parts are exact, for the
 /// computed values â, b̂, ĉ, d̂: each is zero or has magnitude in
-/// [2^-484, 2^995). (Then the exponents of any two satisfy e + e' ≥ −970, so
+/// [2^-484, 2^500]. (Then the exponents of any two satisfy e + e' ≥ −970, so
 /// every part of a product below is a multiple of ulp·ulp' ≥ 2^-1074 with at
 /// most 53 significant bits, represented exactly even when subnormal, and
-/// the error-free transformations hold as they do without underflow; 2^995
-/// keeps Veltkamp's splitting from overflowing.)
+/// the error-free transformations hold as they do without underflow; 2^500
+/// keeps the products and Veltkamp's splitting from overflowing.)
 ///
 /// Fused (Kahan's algorithm, with an FMA): w = fl(ĉ·d̂), e = fma(−ĉ, d̂, w) =
 /// w − ĉ·d̂ exactly, f̂ = fma(â, b̂, −w) = fl(â·b̂ − w), r̂ = fl(f̂ + e). As
 /// â·b̂ − ĉ·d̂ = (â·b̂ − w) + e, the two roundings leave |r̂ − (â·b̂ − ĉ·d̂)| ≤
-/// u·(|f̂| + |r̂|). No contraction can change it: its products are fma calls.
+/// u·(|f̂| + |r̂|). No contraction can change it: its one plain product, w,
+/// is used only as an fma operand, leaving nothing to contract into.
 ///
 /// Split (without an FMA): â·b̂ = p + p' and ĉ·d̂ = q + q' exactly (TwoProduct
 /// by Veltkamp's splitting into 26-bit halves: Dekker, "A floating-point
 /// technique for extending the available precision", 1971), r̂ = fl(fl(p − q)
 /// + fl(p' − q')): |r̂ − (â·b̂ − ĉ·d̂)| ≤ u·(|fl(p − q)| + |fl(p' − q')| + |r̂|).
-/// Compiled only where the compiler has no fused instruction to contract
-/// the splitting's products into (a contracted split is not Veltkamp's).
+/// Compiled only where the target has no FMA instruction
+/// (DEWALL_TARGET_HAS_FMA undefined), so none to contract the splitting's
+/// products into: GCC with -mfma -ffp-contract=fast fuses Veltkamp's split,
+/// which then is not Veltkamp's.
+/// Defined where the target's instruction set has a fused multiply-add
+/// (x86-64 with -mfma or -march=x86-64-v3 and up, AArch64, and others whose
+/// compiler announces a fast fma).
+#if defined(__FP_FAST_FMA) || defined(__FMA__) || defined(__ARM_FEATURE_FMA)
+#define DEWALL_TARGET_HAS_FMA 1
+#endif
 [[gnu::always_inline]] inline double inherited_product_error(const Tracked_double& a, const Tracked_double& b) {
   return std::fabs(a.value()) * b.error() + std::fabs(b.value()) * a.error() + a.error() * b.error();
 }
@@ -125,7 +134,7 @@ struct Exact_coordinate {
   return {r, inherited_product_error(a, b) + inherited_product_error(c, d) +
                  Tracked_double::unit_roundoff * (std::fabs(f) + std::fabs(r))};
 }
-#if !defined(__FP_FAST_FMA) && !defined(__FMA__)
+#ifndef DEWALL_TARGET_HAS_FMA
 /// Veltkamp's splitting: x = head + tail, each of at most 26 significant bits.
 [[gnu::always_inline]] inline std::pair<double, double> split_double(double x) {
   const double scaled = (0x1p27 + 1) * x;
