@@ -358,7 +358,8 @@ std::optional<Tracked_double> plane_determinant(const Matrix<Tracked_double, K>&
 ///    of the whole bound computation (a term e_x·e_y joins the roundings of
 ///    both operands, so not those of one path alone): about 11 per product of
 ///    the expansion and its sum, K·2^(K−1) ≤ 448 products, and the entries,
-///    fewer than 2^13 for K ≤ 7; so ê ≤ computed·(1 + 2^-39), and the margin
+///    fewer than 2^13 for K ≤ 7 (in 2D, plane_determinant: fewer, its
+///    products' parts exact by its own check); so ê ≤ computed·(1 + 2^-39), and the margin
 ///    (1 + 2^-30) covers that and the two roundings of B.
 ///  * Underflow: only called when the filter computed its determinant, so
 ///    every spatial column maximum of the given translation lay in

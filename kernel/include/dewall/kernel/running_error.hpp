@@ -87,6 +87,13 @@ struct Exact_coordinate {
   }
 };
 
+// DEWALL_TARGET_HAS_FMA: defined where the target's instruction set has a fused multiply-add
+// (x86-64 with -mfma or -march=x86-64-v3 and up, AArch64, and others whose
+// compiler announces a fast fma).
+#if defined(__FP_FAST_FMA) || defined(__FMA__) || defined(__ARM_FEATURE_FMA)
+#define DEWALL_TARGET_HAS_FMA 1
+#endif
+
 /// a·b − c·d, its products formed exactly and only what remains rounded:
 /// where the two products nearly cancel (the 2×2 minors of short, nearly
 /// parallel rows: neighbouring points on a circle) the error is about
@@ -114,12 +121,6 @@ struct Exact_coordinate {
 /// (DEWALL_TARGET_HAS_FMA undefined), so none to contract the splitting's
 /// products into: GCC with -mfma -ffp-contract=fast fuses Veltkamp's split,
 /// which then is not Veltkamp's.
-/// Defined where the target's instruction set has a fused multiply-add
-/// (x86-64 with -mfma or -march=x86-64-v3 and up, AArch64, and others whose
-/// compiler announces a fast fma).
-#if defined(__FP_FAST_FMA) || defined(__FMA__) || defined(__ARM_FEATURE_FMA)
-#define DEWALL_TARGET_HAS_FMA 1
-#endif
 [[gnu::always_inline]] inline double inherited_product_error(const Tracked_double& a, const Tracked_double& b) {
   return std::fabs(a.value()) * b.error() + std::fabs(b.value()) * a.error() + a.error() * b.error();
 }
