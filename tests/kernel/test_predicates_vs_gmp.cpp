@@ -599,7 +599,7 @@ TEMPLATE_TEST_CASE_SIG("permanent and running-error stages: points near a sphere
   CHECK(running_error_decided > permanent_left / 8);
   // In 2D its minors come from exact products (plane_determinant): on
   // near-circle points it leaves only the near ties of rows long against
-  // their spacing (measured: 2,158 of 2,171).
+  // their spacing (measured: 2,144 of 2,171).
   INFO("near the sphere: decided " << near_decided << " of " << near_left);
   if constexpr (D == 2) CHECK(near_decided * 10 > near_left * 8);
   if constexpr (D != 2) CHECK(recentred > running_error_decided / 4);  // 2D keeps the query (running_error)
