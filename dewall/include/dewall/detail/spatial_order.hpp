@@ -191,17 +191,23 @@ void radix_sort(std::vector<Item>& items, int first_bit, int end_bit, Key_of&& k
     const auto digit_of = [shift, &key_of](const Item& item) {
       return (static_cast<std::uint64_t>(key_of(item)) >> shift) & (buckets - 1);
     };
+    // Each chunk's bounds are read into locals first: in the loops' own
+    // conditions they were divided out again for every item (the counts'
+    // stores may alias n and chunks, so the compiler cannot hoist them; the
+    // division was a third of the sort's time, 2D circle 10^5).
     for_each_chunk(chunks, [&](std::size_t c) {
       std::size_t* const count = &start[c * buckets];
       std::fill(count, count + buckets, 0);
-      for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) ++count[digit_of(items[i])];
+      const std::size_t begin = chunk_begin(c), end = chunk_begin(c + 1);
+      for (std::size_t i = begin; i < end; ++i) ++count[digit_of(items[i])];
     });
     std::size_t sum = 0;
     for (std::size_t d = 0; d < buckets; ++d)
       for (std::size_t c = 0; c < chunks; ++c) sum += std::exchange(start[c * buckets + d], sum);
     for_each_chunk(chunks, [&](std::size_t c) {
       std::size_t* const next = &start[c * buckets];
-      for (std::size_t i = chunk_begin(c); i < chunk_begin(c + 1); ++i) other[next[digit_of(items[i])]++] = items[i];
+      const std::size_t begin = chunk_begin(c), end = chunk_begin(c + 1);
+      for (std::size_t i = begin; i < end; ++i) other[next[digit_of(items[i])]++] = items[i];
     });
     items.swap(other);
   }
