@@ -26,6 +26,7 @@
 namespace {
 
 using dewall::detail::Incremental_delaunay;
+using dewall::detail::Incremental_statistics;
 using Point3 = dewall::kernel::Point_d<3>;
 
 /// The finite cells of a built triangulation as sorted input-index tuples.
@@ -524,9 +525,9 @@ void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::
 
 /// Zoned insertion on one and on two threads: CGAL's cells, valid after
 /// every round and serial insertion, and the same cells in the same slots
-/// (the output order) on both. Returns the points the zones inserted.
+/// (the output order) on both. Returns the one-thread build's counters.
 template <int D>
-std::size_t check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, double slots_scale = 1,
+Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, double slots_scale = 1,
                         std::size_t probe = 2048) {
   std::set<std::array<double, D>> seen;
   std::vector<dewall::kernel::Point_d<D>> points;
@@ -549,7 +550,19 @@ std::size_t check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, do
   CHECK(same_slots);
   CHECK(one.finite_cells() == two.finite_cells());
   CHECK(one.statistics().zoned_points == two.statistics().zoned_points);
-  return one.statistics().zoned_points;
+  CHECK(one.statistics().zone_rounds == two.statistics().zone_rounds);
+  return one.statistics();
+}
+
+/// n points on the unit circle: in 2D every one on the hull.
+std::vector<dewall::kernel::Point_d<2>> circle_points(std::size_t n, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI);
+  std::vector<dewall::kernel::Point_d<2>> p(n);
+  for (auto& q : p) {
+    const double a = angle(rng);
+    q.x = {std::cos(a), std::sin(a)};
+  }
+  return p;
 }
 
 }  // namespace
@@ -559,22 +572,29 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   // Much of a uniform set goes through the zones (on so few points many
   // cavities meet the cut); the rest waits and is inserted one by one.
   const auto uniform3 = dewall::test::uniform<3>(3000, rng);
-  CHECK(check_zoned<3>(uniform3) > 3000 / 4);
-  CHECK(check_zoned<2>(dewall::test::uniform<2>(3000, rng)) > 3000 / 8);
+  CHECK(check_zoned<3>(uniform3).zoned_points > 3000 / 4);
+  const Incremental_statistics uniform2 = check_zoned<2>(dewall::test::uniform<2>(3000, rng));
+  CHECK(uniform2.zoned_points > 3000 / 8);
+  CHECK(uniform2.zone_rounds > 0);
+  // In 2D a point beyond the hull waits: on a circle, where every point
+  // lies there, the rounds end before their zones start.
+  const Incremental_statistics circle = check_zoned<2>(circle_points(3000, rng));
+  CHECK(circle.zone_rounds == 0);
+  CHECK(circle.zoned_points == 0);
   // Ties everywhere, duplicates, cospherical and flat sets, a surface, extreme scales.
   check_zoned<3>(dewall::test::lattice<3>(2000));
   check_zoned<2>(dewall::test::lattice_samples<2>(3000, 6, rng));
   check_zoned<3>(dewall::test::lattice_samples<3>(2000, 4, rng));
   check_zoned<3>(dewall::test::planes<3>(2000, 3, rng));
   const auto torus = torus_points(2000, rng);
-  const std::size_t torus_zoned = check_zoned<3>(torus);
+  const std::size_t torus_zoned = check_zoned<3>(torus).zoned_points;
   // Zones whose first points wait too often give up, and the rest is inserted one by one.
-  CHECK(check_zoned<3>(torus, 1, 64) < torus_zoned);
+  CHECK(check_zoned<3>(torus, 1, 64).zoned_points < torus_zoned);
   check_zoned<3>(dewall::test::scaled<3>(dewall::test::lattice_samples<3>(1500, 4, rng), 0x1p-600, 0));
   check_zoned<4>(dewall::test::uniform<4>(1200, rng));
   check_zoned<4>(dewall::test::lattice<4>(1000));
   // Zones that run out of slots leave their points to the next round.
-  CHECK(check_zoned<3>(uniform3, 0.25) < check_zoned<3>(uniform3));
+  CHECK(check_zoned<3>(uniform3, 0.25).zoned_points < check_zoned<3>(uniform3).zoned_points);
 }
 
 TEST_CASE("incremental: insert_more after zoned insertion, and zones of no points", "[incremental]") {

@@ -96,6 +96,7 @@ struct Incremental_statistics {
   std::size_t created_cells = 0;  // cells made, summed over insertions
   std::size_t ridge_table_stars = 0;  // stars glued through the ridge hash table
   std::size_t zoned_points = 0;   // points a zone inserted (insert_in_zones)
+  std::size_t zone_rounds = 0;    // rounds whose zones ran (insert_in_zones)
   std::size_t hull_starts = 0;    // 2D: cavities started on a hull edge found along the hull
   Incremental_statistics& operator+=(const Incremental_statistics& o) {
     walk_steps += o.walk_steps;
@@ -104,6 +105,7 @@ struct Incremental_statistics {
     created_cells += o.created_cells;
     ridge_table_stars += o.ridge_table_stars;
     zoned_points += o.zoned_points;
+    zone_rounds += o.zone_rounds;
     return *this;
   }
 };
@@ -830,6 +832,7 @@ class Incremental_delaunay {
       reserve(grown);
       cells_.resize(grown);
       mark_.resize(grown, 0);
+      ++serial_.stats.zone_rounds;
       // Isolated: while waiting for the other zone this thread takes no
       // unrelated outer task (a hybrid's region builds inside one).
       tbb::this_task_arena::isolate([&] {
