@@ -528,7 +528,7 @@ void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::
 /// (the output order) on both. Returns the one-thread build's counters.
 template <int D>
 Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, double slots_scale = 1,
-                        std::size_t probe = 2048) {
+                                   std::size_t probe = 2048) {
   std::set<std::array<double, D>> seen;
   std::vector<dewall::kernel::Point_d<D>> points;
   for (const auto& p : given)

@@ -791,14 +791,15 @@ class Incremental_delaunay {
       // In 2D a point beyond the hull waits (owns: ∞ is no zone's). As soon
       // as more of a zone's hinted points lie there than the zone lets wait
       // before it gives up (insert_zone), the rounds end, no slot taken: on a
-      // circle every point is on the hull, and the zones' tries were 3 % of a
+      // circle every point is on the hull, and the zones' tries were 2 % of a
       // one-thread run at 10^5 points. The hints are found serially, so the
       // answer is the same for any number of threads.
       std::array<std::vector<std::size_t>, 2> hints;
       bool hopeless = false;
       for (std::size_t z = 0; z < 2 && !hopeless; ++z) {
         const std::size_t count = (points[z].size() + hint_spacing - 1) / hint_spacing;
-        const std::size_t waits = points[z].size() >= patient_zone_points ? 2 : 4;  // 1 in …
+        // The zone gives up when more than 1 in `waits` of its first points wait.
+        const std::size_t waits = points[z].size() >= patient_zone_points ? 2 : 4;
         std::size_t beyond_hull = 0;
         for (std::size_t k = 0; k < points[z].size() && !hopeless; k += hint_spacing) {
           const std::size_t c = locate<false>(serial_, points_[points[z][k]]);
@@ -811,7 +812,7 @@ class Incremental_delaunay {
           hints[z].push_back(own ? c : no_cell);
         }
       }
-      if (hopeless) break;
+      if (hopeless) break;  // (its hints incomplete: the round must not run)
       // Each zone's slots: free ones first (the end of the free list), then a new range.
       std::size_t grown = slots();
       for (std::size_t z = 0; z < 2; ++z) {
