@@ -578,7 +578,8 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   CHECK(uniform2.zone_rounds > 0);
   // In 2D a point beyond the hull waits: on a circle, where every point
   // lies there, the rounds end before their zones start.
-  const Incremental_statistics circle = check_zoned<2>(circle_points(3000, rng));
+  std::mt19937_64 circle_rng(43);  // its own: the sets below stay those the test was written with
+  const Incremental_statistics circle = check_zoned<2>(circle_points(3000, circle_rng));
   CHECK(circle.zone_rounds == 0);
   CHECK(circle.zoned_points == 0);
   // Ties everywhere, duplicates, cospherical and flat sets, a surface, extreme scales.

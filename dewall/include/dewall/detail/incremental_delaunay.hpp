@@ -784,21 +784,22 @@ class Incremental_delaunay {
       // yet). Within the round only the zone changes such a slot; so when
       // not free it holds a cell of the zone's (usually near: a slot is
       // reused by the cavity that freed it). Each walk starts where the last
-      // one ended, in or out of the zone (only the zone's cells had been
-      // kept: on a circle, every hinted point beyond the hull, each walk went
-      // from the same old cell, 34,000 extra steps at 10^5 points).
+      // one ended, beyond the hull too (only finite cells had been kept: on a
+      // circle, every hinted point beyond the hull, each walk went from the
+      // same old cell, 34,000 extra steps at 10^5 points).
       //
-      // In 2D a point beyond the hull waits (owns: ∞ is no zone's). As soon
-      // as more of a zone's hinted points lie there than the zone lets wait
-      // before it gives up (insert_zone), the rounds end, no slot taken: on a
-      // circle every point is on the hull, and the zones' tries were 2 % of a
-      // one-thread run at 10^5 points. The hints are found serially, so the
-      // answer is the same for any number of threads.
+      // In 2D a point beyond the hull waits (owns: ∞ is no zone's; the hull
+      // does not change within a round). As soon as more than 1 in `waits`
+      // of all a zone's hinted points lie there — the share of its first
+      // points whose waiting makes insert_zone give up, here estimated from
+      // the hints — the rounds end, no slot taken: on a circle every point
+      // is on the hull, and the zones' tries were 2 % of a one-thread run at
+      // 10^5 points. The hints are found serially, so the answer is the same
+      // for any number of threads.
       std::array<std::vector<std::size_t>, 2> hints;
       bool hopeless = false;
       for (std::size_t z = 0; z < 2 && !hopeless; ++z) {
         const std::size_t count = (points[z].size() + hint_spacing - 1) / hint_spacing;
-        // The zone gives up when more than 1 in `waits` of its first points wait.
         const std::size_t waits = points[z].size() >= patient_zone_points ? 2 : 4;
         std::size_t beyond_hull = 0;
         for (std::size_t k = 0; k < points[z].size() && !hopeless; k += hint_spacing) {
