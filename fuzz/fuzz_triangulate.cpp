@@ -237,8 +237,8 @@ void run(Byte_source& in) {
   // Property 7: zoned insertion (Incremental_delaunay::insert_in_zones, which
   // the library uses from 2^16 points on), every point after the first
   // 256th (the BRIO sample's own sample) in zones: CGAL's cells, and on two threads the same cells in the same
-  // slots as on one; zones that run out of slots or give up early, by the
-  // input's size.
+  // slots as on one; zones that run out of slots or give up early, or try
+  // the points beside the cut too, by the input's size.
   std::vector<Point_d<D>> distinct;
   std::vector<std::uint32_t> input_of;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -249,6 +249,7 @@ void run(Byte_source& in) {
     dt.zoned_insertion_threshold = 0;
     dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
     dt.zone_probe = points.size() % 3 ? 2048 : 4;
+    dt.near_cut_spacings = points.size() % 5 ? 2 : 0;
     tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
   }
   std::vector<dewall::Simplex<D>> cells;

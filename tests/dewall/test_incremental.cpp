@@ -515,9 +515,11 @@ std::vector<Point3> torus_points(std::size_t n, std::mt19937_64& rng) {
 /// in an arena of `threads` threads.
 template <int D>
 void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::Point_d<D>>& points,
-                 std::size_t threshold, int threads, double slots_scale, std::size_t probe) {
+                 std::size_t threshold, int threads, double slots_scale, std::size_t probe,
+                 double near_cut_spacings = 2) {
   dt.zoned_insertion_threshold = threshold;
   dt.zone_probe = probe;
+  dt.near_cut_spacings = near_cut_spacings;
   dt.zone_slots_scale = slots_scale;
   tbb::task_arena arena(threads);
   arena.execute([&] { REQUIRE(dt.build(std::span<const dewall::kernel::Point_d<D>>(points))); });
@@ -528,15 +530,15 @@ void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::
 /// (the output order) on both. Returns the one-thread build's counters.
 template <int D>
 Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>& given, double slots_scale = 1,
-                                   std::size_t probe = 2048) {
+                                   std::size_t probe = 2048, double near_cut_spacings = 2) {
   std::set<std::array<double, D>> seen;
   std::vector<dewall::kernel::Point_d<D>> points;
   for (const auto& p : given)
     if (seen.insert(p.x).second) points.push_back(p);
   Incremental_delaunay<D> one, two;
   one.check_each_insertion = true;
-  build_zoned(one, points, 64, 1, slots_scale, probe);
-  build_zoned(two, points, 64, 2, slots_scale, probe);
+  build_zoned(one, points, 64, 1, slots_scale, probe, near_cut_spacings);
+  build_zoned(two, points, 64, 2, slots_scale, probe, near_cut_spacings);
   const auto cells = finite_cells(one);
   CHECK(cells == dewall::test::cgal_delaunay<D>(points));
   CHECK(one.finite_cells() == cells.size());
@@ -551,6 +553,7 @@ Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>
   CHECK(one.finite_cells() == two.finite_cells());
   CHECK(one.statistics().zoned_points == two.statistics().zoned_points);
   CHECK(one.statistics().zone_rounds == two.statistics().zone_rounds);
+  CHECK(one.statistics().near_cut_points == two.statistics().near_cut_points);
   return one.statistics();
 }
 
@@ -572,7 +575,13 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   // Much of a uniform set goes through the zones (on so few points many
   // cavities meet the cut); the rest waits and is inserted one by one.
   const auto uniform3 = dewall::test::uniform<3>(3000, rng);
-  CHECK(check_zoned<3>(uniform3).zoned_points > 3000 / 4);
+  const Incremental_statistics with_near_cut = check_zoned<3>(uniform3);
+  CHECK(with_near_cut.zoned_points > 3000 / 4);
+  // Points beside the cut wait untried (near_cut), unless told not to.
+  CHECK(with_near_cut.near_cut_points > 0);
+  const Incremental_statistics all_tried = check_zoned<3>(uniform3, 1, 2048, 0);
+  CHECK(all_tried.near_cut_points == 0);
+  CHECK(all_tried.zoned_points > 3000 / 4);
   const Incremental_statistics uniform2 = check_zoned<2>(dewall::test::uniform<2>(3000, rng));
   CHECK(uniform2.zoned_points > 3000 / 8);
   CHECK(uniform2.zone_rounds > 0);
