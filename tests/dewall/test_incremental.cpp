@@ -598,7 +598,7 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   check_zoned<3>(dewall::test::planes<3>(2000, 3, rng));
   const auto torus = torus_points(2000, rng);
   const std::size_t torus_zoned = check_zoned<3>(torus).zoned_points;
-  // Zones whose first points wait too often give up, and the rest is inserted one by one.
+  // Zones whose first tries fail too often give up, and the rest is inserted one by one.
   CHECK(check_zoned<3>(torus, 1, 64).zoned_points < torus_zoned);
   check_zoned<3>(dewall::test::scaled<3>(dewall::test::lattice_samples<3>(1500, 4, rng), 0x1p-600, 0));
   check_zoned<4>(dewall::test::uniform<4>(1200, rng));

@@ -53,6 +53,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -97,7 +98,7 @@ struct Incremental_statistics {
   std::size_t ridge_table_stars = 0;  // stars glued through the ridge hash table
   std::size_t zoned_points = 0;   // points a zone inserted (insert_in_zones)
   std::size_t zone_rounds = 0;    // rounds whose zones ran (insert_in_zones)
-  std::size_t near_cut_points = 0;  // points that waited untried beside the cut (near_cut)
+  std::size_t near_cut_points = 0;  // waits untried beside the cut (near_cut), summed over rounds
   std::size_t hull_starts = 0;    // 2D: cavities started on a hull edge found along the hull
   Incremental_statistics& operator+=(const Incremental_statistics& o) {
     walk_steps += o.walk_steps;
@@ -248,25 +249,27 @@ class Incremental_delaunay {
   /// of threads), and twice the sample's rest from which that is zoned too
   /// (insert_sample); tests lower it.
   std::size_t zoned_insertion_threshold = std::size_t{1} << 16;
-  /// A zone whose tries on its first zone_probe points fail more than a
-  /// quarter of the time gives up the round, and the rounds end (the points
-  /// near_cut leaves untried are no tries): on a torus cut through its
-  /// hole, whose cells cross every such plane, 40 % of the points waited
-  /// after long partial searches, and one thread took twice its time (tests
-  /// lower it). A zone of at least patient_zone_points gives up only when
-  /// more than half of its tries on its first zone_probe points, or a quarter
-  /// of those on its first 4·zone_probe, failed: a zone's first points lie where the points' curve
-  /// enters it, beside the cut, where more cavities cross it (2·10^6 uniform
-  /// points: 27 % of the first 2,048, then the zone's 937,500 points went one
-  /// by one, and two threads took one's time: 3.54 s, patient 2.01 s).
-  /// Smaller zones keep the quarter: there giving up costs little, and
-  /// going on can cost more than it gives (a torus with noise, 10^5 points:
-  /// patient, one thread 0.195 → 0.231 s, two 0.188 → 0.125 s).
+  /// A zone whose first zone_probe tries fail more than a quarter of the
+  /// time gives up the round, and the rounds end (the points near_cut
+  /// leaves untried are no tries; running out of slots is no failure): on a
+  /// torus cut through its hole, whose cells cross every such plane, 40 % of
+  /// the points waited after long partial searches, and one thread took
+  /// twice its time (tests lower it). A zone of at least patient_zone_points
+  /// gives up only when more than half of its first zone_probe tries, or a
+  /// quarter of its first 4·zone_probe, failed: a zone's first points lie
+  /// where the points' curve enters it, beside the cut, where more cavities
+  /// cross it (2·10^6 uniform points: 27 % of the first 2,048 waited, then
+  /// the zone's 937,500 points went one by one, and two threads took one's
+  /// time: 3.54 s, patient 2.01 s). Smaller zones keep the quarter: there
+  /// giving up costs little, and going on can cost more than it gives (a
+  /// torus with noise, 10^5 points: patient, one thread 0.195 → 0.231 s,
+  /// two 0.188 → 0.125 s). (These figures are from before near_cut, when
+  /// every point was tried and every wait counted.)
   std::size_t zone_probe = 2048;
   /// Zoned insertion: points this many point spacings or nearer the cut
-  /// wait for the next round without trying (near_cut; tests set 0). 2, 2.5
-  /// and 3 measured alike on uniform 3D 10^6 points (walk steps 2.31 →
-  /// 1.73 million); from 4 on, zones gave up (when their waits counted).
+  /// wait for the next round without trying (near_cut; tests set 0: none).
+  /// 2, 2.5 and 3 measured alike on uniform 3D 10^6 points (walk steps 2.31
+  /// → 1.73 million, one thread 2–2.5 % faster, two 4 %).
   double near_cut_spacings = 2;
   /// Tests: scales the new slots each zone gets (below 1 zones run out of
   /// slots early, and their points wait for the next round).
@@ -776,10 +779,12 @@ class Incremental_delaunay {
     std::stable_sort(axes.begin(), axes.end(),
                      [&](int a, int b) { return box.hi[a] - box.lo[a] > box.hi[b] - box.lo[b]; });
     // near_cut's unit: the box's mean extent (geometric: its volume's D-th
-    // root, without the product's overflow at extreme scales).
+    // root, without the product's overflow at extreme scales). None (the
+    // rule off) when an extent overflows or near_cut_spacings is not > 0.
     double log_extents = 0;
     for (int j = 0; j < D; ++j) log_extents += std::log(box.hi[j] - box.lo[j]);
-    near_cut_unit_ = 1 / std::exp(log_extents / D);
+    near_cut_scale_ = 1 / (std::exp(log_extents / D) * near_cut_spacings);
+    if (!(std::isfinite(near_cut_scale_) && near_cut_scale_ > 0)) near_cut_scale_ = 0;
     std::array<Worker, 2> workers;
     for (int round = 0; round < D && !pending.empty() && pending.size() >= zoned_insertion_threshold / 16; ++round) {
       const int axis = axes[round];
@@ -818,7 +823,7 @@ class Incremental_delaunay {
       // In 2D a point beyond the hull waits (owns: ∞ is no zone's; the hull
       // does not change within a round). As soon as more than 1 in `waits`
       // of all a zone's hinted points lie there — the share of its first
-      // points whose waiting makes insert_zone give up, here estimated from
+      // tries whose failing makes insert_zone give up, here estimated from
       // the hints — the rounds end, no slot taken: on a circle every point
       // is on the hull, and the zones' tries were 2 % of a one-thread run at
       // 10^5 points. The hints are found serially, so the answer is the same
@@ -914,23 +919,22 @@ class Incremental_delaunay {
     w.gave_up = false;
     std::size_t hint = no_cell;
     const bool patient = points.size() >= patient_zone_points;
-    std::size_t tried = 0, failed = 0;  // the zone's tries so far (near_cut's points not tried)
+    std::size_t tried = 0, failed = 0;  // the zone's tries (near_cut's points are none) and failures
     for (std::size_t k = 0; k < points.size(); ++k) {
       if (k % hint_spacing == 0) hint = hints[k / hint_spacing];
-      if ((k == zone_probe && failed * (patient ? 2 : 4) > tried) || (patient && k == 4 * zone_probe && failed * 4 > tried))
-        w.gave_up = true;
       const Index v = points[k];
-      const bool near = near_cut(v);
-      const bool tries = !w.out_of_slots && !w.gave_up && !near;
+      const bool trying = !w.out_of_slots && !w.gave_up;
+      const bool near = trying && near_cut(v);
       bool inserted = false;
-      if (tries) {
+      if (trying && !near) {
         ++tried;
         w.walk_failed = false;
-        if (w.last != no_cell) inserted = insert<true>(w, v);
+        const std::size_t start = w.last;  // (a failed walk moves w.last: locate)
+        if (start != no_cell) inserted = insert<true>(w, v);
         // A walk must start in a finite cell of the zone: the hint's slot may
         // hold an infinite one now.
-        if (!inserted && (w.last == no_cell || w.walk_failed) && !w.out_of_slots && hint != no_cell &&
-            hint != w.last && !is_free(hint) && !is_infinite(hint)) {
+        if (!inserted && (start == no_cell || w.walk_failed) && !w.out_of_slots && hint != no_cell &&
+            hint != start && !is_free(hint) && !is_infinite(hint)) {
           const std::size_t from = w.last;
           w.last = hint;
           inserted = insert<true>(w, v);
@@ -939,25 +943,30 @@ class Incremental_delaunay {
       }
       if (inserted) ++w.stats.zoned_points;
       else w.deferred.push_back(v);
-      failed += tries && !inserted;
       w.stats.near_cut_points += near;
+      // Running out of slots is no failure of the zone's (its points wait for the next round).
+      failed += trying && !near && !inserted && !w.out_of_slots;
+      if ((tried == zone_probe && failed * (patient ? 2 : 4) > tried) ||
+          (patient && tried == 4 * zone_probe && failed * 4 > tried))
+        w.gave_up = true;
     }
   }
 
   /// Zoned insertion: whether vertex v (a point of the round) lies within
   /// near_cut_spacings point spacings of the cut, the spacing estimated from
-  /// the box's volume and the points inserted when v is (v itself: vertices
-  /// are numbered in the insertion order; at least those inserted at the
-  /// round's start). Such a point waits for the next round untried: its
-  /// walk or cavity nearly always meets the other zone (uniform 3D, 10^6
-  /// points: 95 % of those within 2 spacings failed, after a walk and a
-  /// partial search; 4 % of those 4–5 spacings away). Coordinates and
+  /// the box's volume and the points inserted when v would be (v itself:
+  /// vertices are numbered in the planned insertion order; at least those
+  /// inserted at the round's start). Such a point waits for the next round
+  /// untried: its walk or cavity nearly always meets the other zone
+  /// (uniform 3D, 10^6 points, all rounds, before this rule: 98 % of the
+  /// tries within 2 spacings failed, after a walk and a partial search; 75
+  /// % of those 2–3 spacings away, 16 % of those 4–5 away). Coordinates and
   /// numbers alone decide, so the answer is the same for any thread count.
   bool near_cut(Index v) const {
-    const double distance = std::abs(points_[v].x[cut_axis_] - cut_) * near_cut_unit_ / near_cut_spacings;
+    const double distance = std::abs(points_[v].x[cut_axis_] - cut_) * near_cut_scale_;
     double power = distance;  // distance^D · points < 1: within the spacings
     for (int j = 1; j < D; ++j) power *= distance;
-    return power * std::max(near_cut_inserted_, static_cast<double>(v)) < 1;
+    return near_cut_scale_ > 0 && power * std::max(near_cut_inserted_, static_cast<double>(v)) < 1;
   }
   static constexpr std::size_t hint_spacing = 64;
   static constexpr std::size_t cut_sample = std::size_t{1} << 16;
@@ -1309,7 +1318,8 @@ class Incremental_delaunay {
   /// have one (serial_), each zone of a zoned round its own.
   struct Worker {
     std::vector<Index> free;      // free slots (serial_'s: every free slot)
-    std::size_t last = 0;         // a finite cell the last insertion made (or a zone's failed walk reached): the next walk starts there
+    // A finite cell the last insertion made (or where a zone's failed walk stopped): the next walk starts there.
+    std::size_t last = 0;
     std::ptrdiff_t finite_change = 0;  // finite cells made minus destroyed, not yet in finite_cells_
     Incremental_statistics stats;
     Scratch_list<std::size_t> cavity;
@@ -1334,7 +1344,7 @@ class Incremental_delaunay {
   // Zoned insertion: the current round's cut (zone_of).
   int cut_axis_ = 0;
   double cut_ = 0;
-  double near_cut_unit_ = 0;      // near_cut: 1 / the box's mean extent
+  double near_cut_scale_ = 0;     // near_cut: 1 / (the box's mean extent · near_cut_spacings); 0: off
   double near_cut_inserted_ = 0;  // near_cut: points inserted at the round's start
   kernel::Static_filter_d<D> static_filter_;  // from the points' box: in front of the kernel's cascade
 };
