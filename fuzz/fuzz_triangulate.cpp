@@ -249,7 +249,7 @@ void run(Byte_source& in) {
     dt.zoned_insertion_threshold = 0;
     dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
     dt.zone_probe = points.size() % 3 ? 2048 : 4;
-    dt.near_cut_spacings = points.size() % 5 ? 2 : 0;
+    dt.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
     tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
   }
   std::vector<dewall::Simplex<D>> cells;
