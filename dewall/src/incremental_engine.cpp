@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "dewall/detail/incremental_delaunay.hpp"
@@ -63,7 +64,10 @@ std::size_t hand_over_cells(Incremental_delaunay<D>& dt, Simplex_output<D>& outp
   constexpr std::size_t in_flight = 4;
   const std::size_t slots = dt.slots(), blocks = (slots + slots_per_block - 1) / slots_per_block;
   const auto end_of = [&](std::size_t block) { return std::min(slots, (block + 1) * slots_per_block); };
-  std::array<std::vector<Built_simplex<D>>, in_flight> buffers;
+  // Each buffer is a block long (allocated when first used, not cleared);
+  // the first filled[k] of buffer k hold its block's finite cells.
+  std::array<std::unique_ptr<Built_simplex<D>[]>, in_flight> buffers;
+  std::array<std::size_t, in_flight> filled{};
   std::size_t next = 0, count = 0;
   const auto take_block = [&](tbb::flow_control& control) -> std::size_t {
     if (next == blocks) control.stop();
@@ -71,13 +75,30 @@ std::size_t hand_over_cells(Incremental_delaunay<D>& dt, Simplex_output<D>& outp
   };
   const auto convert = [&](std::size_t block) {
     auto& cells = buffers[block % in_flight];
-    cells.clear();
-    for (std::size_t c = block * slots_per_block; c < end_of(block); ++c)
-      if (!dt.is_free(c) && !dt.is_infinite(c)) cells.push_back({input_vertices(dt, c), 0});
+    if (!cells) cells = std::make_unique_for_overwrite<Built_simplex<D>[]>(std::min(slots, slots_per_block));
+    // Without a branch on whether a slot holds a finite cell: every slot's
+    // cell is written at the next place, which only a finite one takes (on a
+    // circle every other slot holds an infinite cell, and the branch was
+    // mispredicted: 10^5 points, the conversion 1.7 ms of 42.7). A free or
+    // infinite slot reads the caller's id of vertex 0 instead of its own.
+    using Delaunay = Incremental_delaunay<D>;
+    std::size_t k = 0;
+    for (std::size_t c = block * slots_per_block; c < end_of(block); ++c) {
+      const auto& v = dt.cell(c);
+      bool finite = v[0] != Delaunay::free_slot;
+      for (int i = 0; i <= D; ++i) finite &= v[static_cast<std::size_t>(i)] != Delaunay::infinite;
+      const Index keep = Index{0} - static_cast<Index>(finite);  // all ones when finite (GCC branched on a ?:)
+      Built_simplex<D>& s = cells[k];
+      for (int i = 0; i <= D; ++i)
+        s.vertices[static_cast<std::size_t>(i)] = dt.input_index(v[static_cast<std::size_t>(i)] & keep);
+      s.wall_level = 0;
+      k += finite;
+    }
+    filled[block % in_flight] = k;
     return block;
   };
   const auto pass_on = [&](std::size_t block) {
-    const auto& cells = buffers[block % in_flight];
+    const std::span<const Built_simplex<D>> cells(buffers[block % in_flight].get(), filled[block % in_flight]);
     // Isolated: an output running TBB work of its own takes no conversion meanwhile.
     tbb::this_task_arena::isolate([&] { output.put(cells); });
     count += cells.size();
