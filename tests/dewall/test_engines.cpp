@@ -442,6 +442,25 @@ TEST_CASE("engines: a kernel whose approximate coordinates are rounded gives CGA
   CHECK(rounded_gives_cgal<Rounded_kernel<3, 4, false>>(generated<3>(Point_kind::uniform, 300, 10)));
 }
 
+TEST_CASE("engines: the incremental engine hands over every finite cell, after zoned rounds and on a circle",
+          "[engine]") {
+  // The hand-over converts every slot, finite or not, without a branch
+  // (incremental_engine.cpp). 80,000 points leave more than 2^16 after the
+  // sample, so zoned rounds run and leave unused slots free; on a circle every
+  // other slot holds an infinite cell. The same simplices as CGAL's, each once,
+  // and the same bytes on one thread and on all.
+  using dewall::io::Point_kind;
+  for (const auto& points : {generated<2>(Point_kind::uniform, 80000, 21), generated<2>(Point_kind::sphere, 20000, 22)}) {
+    const auto expected = dewall::test::cgal_delaunay<2>(points);
+    const auto all = dewall::triangulate<2>(points, Options{.engine = Engine::incremental});
+    const auto one = dewall::triangulate<2>(points, Options{.threads = 1, .engine = Engine::incremental});
+    CHECK(all.simplices.size() == expected.size());
+    CHECK(dewall::test::as_set<2>(all.simplices) == expected);
+    CHECK(positively_oriented<2>(points, all.simplices));
+    CHECK(one.simplices == all.simplices);
+  }
+}
+
 TEST_CASE("engines: the incremental engine needs the project's kernel", "[engine]") {
   struct User_kernel : dewall::kernel::Filtered_kernel_d<2> {};
   const std::vector<dewall::kernel::Point_d<2>> points{{{0, 0}}, {{1, 0}}, {{0, 1}}};

@@ -317,7 +317,7 @@ class Incremental_delaunay {
 
   /// For a caller that reads the cells out once, in slot order, and then
   /// drops the object (the collecting output): frees the points and the
-  /// search's marks now. Afterwards only slots(), is_free(), is_infinite(),
+  /// search's marks now (above 2D; in 2D they are in the cells). Afterwards only slots(), is_free(), is_infinite(),
   /// cell(), input_index() and finite_cells() may be called, and after
   /// release_slots_before(s) on no slot below s.
   void finish_for_reading() {
@@ -639,7 +639,7 @@ class Incremental_delaunay {
       if (start_cell == no_cell) return false;
     DEWALL_EXPENSIVE_ASSERT(in_conflict(start_cell, q));
 
-    // 3b. The cavity, breadth-first; mark_: in conflict or not (clear_marks resets both).
+    // 3b. The cavity, breadth-first; mark(c): in conflict or not (clear_marks resets both).
     constexpr std::uint8_t in = 1, out = 2;
     // The neighbours' marks and records, then the points of their vertices
     // across the shared facets, are the search's cache misses (measured on a
@@ -884,7 +884,9 @@ class Incremental_delaunay {
           if constexpr (!marks_in_cells) mark_.resize(w.next_slot);
         } else {
           for (std::size_t s = w.next_slot; s < w.end_slot; ++s) {
-            cells_[s].v[0] = free_slot;
+            // Every vertex written: the hand-over reads a free slot's whole
+            // record (hand_over_cells), and this one was never a cell.
+            cells_[s].v.fill(free_slot);
             serial_.free.push_back(static_cast<Index>(s));
           }
         }
@@ -1017,8 +1019,11 @@ class Incremental_delaunay {
         if constexpr (!marks_in_cells) mark_.push_back(0);
       }
       w.new_cells.push_back(static_cast<Index>(s));
-      cells_[s].v = f.vertices;  // its mark is 0: clear_marks reset the slot when it left a cavity
-      if constexpr (marks_in_cells) cells_[s].mark = 0;  // (a new slot's is not initialised)
+      cells_[s].v = f.vertices;
+      // Its mark must be 0. Above 2D it is: clear_marks reset the slot when it
+      // left a cavity, and growing mark_ fills zeros. In 2D the mark is in the
+      // record, which a new slot has not initialised.
+      if constexpr (marks_in_cells) cells_[s].mark = 0;
       cells_[s].n[f.facet] = f.outside;
       cells_[f.outside >> facet_bits].n[f.outside & facet_mask] = reference(s, f.facet);
       bool finite = true;
@@ -1271,10 +1276,11 @@ class Incremental_delaunay {
 
   std::vector<Point> points_;    // by vertex id (insertion order)
   std::vector<Index> input_;     // the caller's id of each vertex
-  /// In 2D a cell's search mark lives in its record: the record's 24 bytes
-  /// padded to 32 (so that none straddles two cache lines) leave room for
-  /// it, and the search then reads one line per neighbour instead of two
-  /// (the record and mark_). Engine driver, one thread, best of 20 or 5,
+  /// In 2D a cell's search mark lives in its record: the record (24 bytes
+  /// of vertices and neighbours) is padded to 32, so that none straddles two
+  /// cache lines and the mark fits, and the search then reads one line per
+  /// neighbour instead of two (the record and mark_). The cost: 32 bytes a
+  /// slot instead of 24 + 1 (about 14 bytes more a point). Engine driver, one thread, best of 20 or 5,
   /// three alternated series: 10^5 points on a circle 39.6–40.3 → 38.7–39.2
   /// ms, uniform 10^5 36.7 → 36.1–36.3, uniform 10^6 413–417 → 413–415,
   /// a 10^5 grid 50.5–50.6 → 50.3–50.4. In 3D the 32-byte record is full
