@@ -83,12 +83,10 @@ std::size_t hand_over_cells(Incremental_delaunay<D>& dt, Simplex_output<D>& outp
     // infinite slot reads the caller's id of vertex 0 instead of its own
     // (every slot's vertices are written: a freed cell's are its old ones, a
     // zone's unused slot's are free_slot).
-    using Delaunay = Incremental_delaunay<D>;
     std::size_t k = 0;
     for (std::size_t c = block * slots_per_block; c < end_of(block); ++c) {
       const auto& v = dt.cell(c);
-      bool finite = v[0] != Delaunay::free_slot;
-      for (int i = 0; i <= D; ++i) finite &= v[static_cast<std::size_t>(i)] != Delaunay::infinite;
+      const bool finite = dt.holds_finite_cell(c);
       const Index finite_mask = Index{0} - static_cast<Index>(finite);  // all ones when finite (GCC branched on a ?:)
       Built_simplex<D>& s = cells[k];
       for (int i = 0; i <= D; ++i)

@@ -301,6 +301,15 @@ class Incremental_delaunay {
   std::size_t slots() const { return cells_.size(); }
   bool is_free(std::size_t c) const { return cells_[c].v[0] == free_slot; }
   bool is_infinite(std::size_t c) const { return infinite_position(c) <= D; }
+  /// Whether slot c holds a finite cell (!is_free(c) && !is_infinite(c)),
+  /// without a branch: the hand-over asks it of every slot, and on a circle
+  /// every other slot holds an infinite cell (no pattern to predict).
+  bool holds_finite_cell(std::size_t c) const {
+    const Cell& v = cells_[c].v;
+    bool finite = v[0] != free_slot;
+    for (int i = 0; i <= D; ++i) finite &= v[i] != infinite;
+    return finite;
+  }
   /// The position of the infinite vertex in cell c, or D + 1 when it is finite.
   int infinite_position(std::size_t c) const {
     for (int i = 0; i <= D; ++i)
@@ -317,8 +326,9 @@ class Incremental_delaunay {
 
   /// For a caller that reads the cells out once, in slot order, and then
   /// drops the object (the collecting output): frees the points and the
-  /// search's marks now (above 2D; in 2D they are in the cells). Afterwards only slots(), is_free(), is_infinite(),
-  /// cell(), input_index() and finite_cells() may be called, and after
+  /// search's marks now (above 2D; in 2D they are in the cells). Afterwards
+  /// only slots(), is_free(), is_infinite(), holds_finite_cell(), cell(),
+  /// input_index() and finite_cells() may be called, and after
   /// release_slots_before(s) on no slot below s.
   void finish_for_reading() {
     std::vector<Point>().swap(points_);
@@ -1280,11 +1290,12 @@ class Incremental_delaunay {
   /// of vertices and neighbours) is padded to 32, so that none straddles two
   /// cache lines and the mark fits, and the search then reads one line per
   /// neighbour instead of two (the record and mark_). The cost: 32 bytes a
-  /// slot instead of 24 + 1 (about 14 bytes more a point). Engine driver, one thread, best of 20 or 5,
-  /// three alternated series: 10^5 points on a circle 39.6–40.3 → 38.7–39.2
-  /// ms, uniform 10^5 36.7 → 36.1–36.3, uniform 10^6 413–417 → 413–415,
-  /// a 10^5 grid 50.5–50.6 → 50.3–50.4. In 3D the 32-byte record is full
-  /// (and larger ones cost more lines than the mark saves).
+  /// slot instead of 24 + 1 (about 14 bytes more a point). Engine driver,
+  /// one thread, best of 20 or 5, three alternated series: 10^5 points on a
+  /// circle 39.6–40.3 → 38.7–39.2 ms, uniform 10^5 36.7 → 36.1–36.3, uniform
+  /// 10^6 413–417 → 413–415, a 10^5 grid 50.5–50.6 → 50.3–50.4. In 3D the
+  /// 32-byte record is full (and larger ones cost more lines than the mark
+  /// saves).
   static constexpr bool marks_in_cells = D == 2;
   struct No_mark {};
   /// A cell slot: its vertices and its neighbour references side by side, so
