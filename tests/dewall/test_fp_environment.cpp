@@ -18,6 +18,7 @@
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
+#include "dewall/kernel/static_filter.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/gmp_reference.hpp"
 
@@ -132,17 +133,41 @@ TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero",
     for (int i = 3; i <= 4; ++i) c[i] = P{{double(coordinate(rng)), double(coordinate(rng)), double(coordinate(rng))}};
     cases.push_back(c);
   }
+  // The x column tiny for every point (at most 2^-556, below the per-call
+  // filter's domain) in a box whose extents are in it: the static filter's
+  // semi-static bound decides these with its underflow floor (static_filter.hpp).
+  const std::size_t first_tiny_column = cases.size();
+  for (int k = 0; k < 1000; ++k) {
+    std::array<P, 5> c;
+    for (auto& p : c) p = P{{0x1p-560 * coordinate(rng), double(coordinate(rng)), double(coordinate(rng))}};
+    cases.push_back(c);
+  }
   std::vector<std::pair<int, int>> expected;
   for (const auto& c : cases)
     expected.emplace_back(dewall::test::gmp_orientation<3>({c[0], c[1], c[2], c[3]}),
                           dewall::test::gmp_side_of_oriented_sphere<3>({c[0], c[1], c[2], c[3]}, c[4]));
   const Hostile_environment hostile;
-  int decided = 0;
+  int decided = 0, semi_static_decided = 0, tiny_column_decided = 0;
   for (std::size_t k = 0; k < cases.size(); ++k) {
     const auto& c = cases[k];
     const dewall::kernel::Orientation_points<3> o{&c[0], &c[1], &c[2], &c[3]};
     const dewall::kernel::Sphere_points<3> s{&c[0], &c[1], &c[2], &c[3], &c[4]};
     INFO("case " << k);
+    // The static filter of a box around the case (at least [-1, 1]^3, so
+    // that a tiny column's extent stays in the domain), then its semi-static bound.
+    std::array<double, 3> lo, hi;
+    lo.fill(-1);
+    hi.fill(1);
+    for (const auto& p : c)
+      for (int j = 0; j < 3; ++j) lo[j] = std::min(lo[j], p[j]), hi[j] = std::max(hi[j], p[j]);
+    const dewall::kernel::Static_filter_d<3> box_filter(lo, hi);
+    const auto by_box = box_filter.side_of_oriented_sphere(s);
+    if (const auto f = box_filter.side_of_oriented_sphere_filtered(s)) {
+      CHECK(*f == expected[k].second);
+      semi_static_decided += !by_box;
+      tiny_column_decided += !by_box && k >= first_tiny_column;
+    }
+    if (box_filter.valid()) CHECK(box_filter.side_of_oriented_sphere_sign(s) == expected[k].second);
     if (const auto f = dewall::kernel::orientation_d_filter<3>(o)) {
       ++decided;
       CHECK(*f == expected[k].first);
@@ -152,6 +177,8 @@ TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero",
     CHECK(dewall::kernel::side_of_oriented_sphere_d<3>(s) == expected[k].second);
   }
   CHECK(decided > 0);  // the filter was exercised, not only the later stages
+  CHECK(semi_static_decided > 0);  // and the static filter's semi-static bound,
+  CHECK(tiny_column_decided > 0);  // below the per-call filter's domain too
   CHECK(Hostile_environment::in_force());
 }
 
