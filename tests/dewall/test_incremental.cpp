@@ -517,6 +517,7 @@ template <int D>
 void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::Point_d<D>>& points,
                  std::size_t threshold, int threads, double slots_scale, std::size_t probe,
                  double near_cut_spacings = 2) {
+  dt.filter_order_window = 256;  // both orders of the static filter's bounds, on few points
   dt.zoned_insertion_threshold = threshold;
   dt.zone_probe = probe;
   dt.near_cut_spacings = near_cut_spacings;
@@ -601,6 +602,16 @@ TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on on
   // Zones whose first tries fail too often give up, and the rest is inserted one by one.
   CHECK(check_zoned<3>(torus, 1, 64).zoned_points < torus_zoned);
   check_zoned<3>(dewall::test::scaled<3>(dewall::test::lattice_samples<3>(1500, 4, rng), 0x1p-600, 0));
+  // A small torus in a wide box (its corners): the box's bound leaves most
+  // sphere tests, and the semi-static bound goes first.
+  std::mt19937_64 small_torus_rng(44);  // its own: the sets below stay those the test was written with
+  auto small_torus = torus_points(2000, small_torus_rng);
+  for (auto& p : small_torus)
+    for (double& x : p.x) x *= 1e-4;
+  for (int corner = 0; corner < 8; ++corner)
+    small_torus.push_back({{corner & 1 ? 1.0 : -1.0, corner & 2 ? 1.0 : -1.0, corner & 4 ? 1.0 : -1.0}});
+  CHECK(check_zoned<3>(small_torus).semi_static_first_windows > 0);
+  CHECK(check_zoned<3>(uniform3).semi_static_first_windows == 0);
   check_zoned<4>(dewall::test::uniform<4>(1200, rng));
   check_zoned<4>(dewall::test::lattice<4>(1000));
   // Zones that run out of slots leave their points to the next round.

@@ -219,6 +219,10 @@ void check_side_of_sphere(const std::vector<Point<D>>& points, Degeneracy degene
                  static_filter_of<D>(points).side_of_oriented_sphere_sign(refs), points);
   tally.check<D>("sphere static filter, then the cascade, wide box", expected,
                  static_filter_of<D>(points, true).side_of_oriented_sphere_sign(refs), points);
+  std::uint32_t box_bound_left = 0;
+  tally.check<D>("sphere semi-static bound first, then the cascade, wide box", expected,
+                 static_filter_of<D>(points, true).template side_of_oriented_sphere_sign<true>(refs, box_bound_left),
+                 points);
   std::swap(refs[0], refs[D]);  // an odd permutation of the simplex flips the sign
   tally.check<D>("side_of_oriented_sphere_d, p_0 and p_D swapped", -expected, side_of_oriented_sphere_d<D>(refs),
                  points);
