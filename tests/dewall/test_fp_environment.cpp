@@ -167,7 +167,11 @@ TEST_CASE("the static filters hold in any rounding mode and with flush-to-zero",
       semi_static_decided += !by_box;
       tiny_column_decided += !by_box && k >= first_tiny_column;
     }
-    if (box_filter.valid()) CHECK(box_filter.side_of_oriented_sphere_sign(s) == expected[k].second);
+    if (box_filter.valid()) {
+      CHECK(box_filter.side_of_oriented_sphere_sign(s) == expected[k].second);
+      std::uint32_t box_bound_left = 0;  // and the semi-static bound first
+      CHECK(box_filter.side_of_oriented_sphere_sign<true>(s, box_bound_left) == expected[k].second);
+    }
     if (const auto f = dewall::kernel::orientation_d_filter<3>(o)) {
       ++decided;
       CHECK(*f == expected[k].first);

@@ -887,6 +887,11 @@ TEMPLATE_TEST_CASE_SIG("static filter on a wide lattice: each call's own bound, 
       }
       if (orientation) CHECK(*orientation == expected_orientation);
       if (sphere) CHECK(static_cast<int>(*sphere) == expected_sphere);
+      // The whole chain, the semi-static bound first too (3D): the lattice's bound still decides.
+      std::uint32_t box_bound_left = 0;
+      CHECK(static_cast<int>(filter.side_of_oriented_sphere_sign(sphere_refs)) == expected_sphere);
+      CHECK(static_cast<int>(filter.template side_of_oriented_sphere_sign<true>(sphere_refs, box_bound_left)) ==
+            expected_sphere);
       decided_zero += (orientation && *orientation == ZERO) + (sphere && *sphere == ZERO);
       wide_ties_left += wide && expected_sphere == 0 && !sphere;
     }
@@ -956,8 +961,12 @@ TEMPLATE_TEST_CASE_SIG("static filter on a lattice: exact up to its bound, as GM
       orientation_zero += *orientation == ZERO;
       const auto sphere = filter.side_of_oriented_sphere(sphere_refs);
       REQUIRE(sphere.has_value());
-      CHECK(static_cast<int>(*sphere) ==
-            static_cast<int>(dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1])));
+      const int expected_sphere = dewall::test::gmp_side_of_oriented_sphere<D>(simplex, points[D + 1]);
+      CHECK(static_cast<int>(*sphere) == expected_sphere);
+      // The semi-static bound first (3D): the box's exact bound still decides the ties.
+      std::uint32_t box_bound_left = 0;
+      CHECK(static_cast<int>(filter.template side_of_oriented_sphere_sign<true>(sphere_refs, box_bound_left)) ==
+            expected_sphere);
       sphere_zero += *sphere == ZERO;
     }
     CHECK(orientation_zero > 50);  // the ties were reached, and decided

@@ -422,9 +422,13 @@ class Incremental_delaunay {
   template <bool Semi_static_first>
   [[gnu::always_inline]] bool sphere_holds(std::size_t c, const Point& q, Filter_tally& tally) const {
     const auto refs = sphere_points(c, q);
-    ++tally.tests;
-    const kernel::Sign s =
-        static_filter_.template side_of_oriented_sphere_sign<Semi_static_first>(refs, tally.box_bound_left);
+    kernel::Sign s;
+    if constexpr (D == 3) {
+      ++tally.tests;
+      s = static_filter_.template side_of_oriented_sphere_sign<Semi_static_first>(refs, tally.box_bound_left);
+    } else {
+      s = static_filter_.side_of_oriented_sphere_sign(refs);
+    }
     if (s != kernel::ZERO) return s == kernel::POSITIVE;
     return exact_zero_perturbed(refs);
   }
@@ -663,11 +667,14 @@ class Incremental_delaunay {
   template <bool Zoned>
   bool find_cavity(Worker& w, const Point& q, Index v) {
     Filter_tally tally;
-    if constexpr (D != 3) return find_cavity<Zoned, false>(w, q, v, tally);
-    const bool found = w.semi_static_first ? find_cavity<Zoned, true>(w, q, v, tally)
-                                           : find_cavity<Zoned, false>(w, q, v, tally);
-    choose_filter_order(w, tally);
-    return found;
+    if constexpr (D != 3) {
+      return find_cavity<Zoned, false>(w, q, v, tally);
+    } else {
+      const bool found = w.semi_static_first ? find_cavity<Zoned, true>(w, q, v, tally)
+                                             : find_cavity<Zoned, false>(w, q, v, tally);
+      choose_filter_order(w, tally);
+      return found;
+    }
   }
   /// Which of the static filter's two bounds the sphere tests of w's cavity
   /// searches try first, in 3D (in 2D the box's: its cascade has no
@@ -691,8 +698,8 @@ class Incremental_delaunay {
     if (w.filter_tally.tests < filter_order_window) return;
     w.stats.semi_static_first_windows += w.semi_static_first;
     if (!w.semi_static_first) {
-      w.semi_static_first = w.filter_tally.box_bound_left * 4 > w.filter_tally.tests;
-    } else if (++w.semi_static_windows == 16) {
+      w.semi_static_first = w.filter_tally.box_bound_left > w.filter_tally.tests / 4;
+    } else if (++w.semi_static_windows == 15) {
       w.semi_static_first = false;
       w.semi_static_windows = 0;
     }

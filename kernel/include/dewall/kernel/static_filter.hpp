@@ -27,8 +27,9 @@
 //    above, the semi-static filter of each call does the work. Outside the
 //    domain the filter never decides.
 // It runs before the semi-static filter (which computes the column maxima per
-// call) and decides nearly every call on well-spread input; what it leaves,
-// the full cascade decides. Tested against GMP on every family of
+// call; in 3D a caller may ask for that one first, where the box's bound
+// leaves many calls: Semi_static_first) and decides nearly every call on
+// well-spread input; what it leaves, the full cascade decides. Tested against GMP on every family of
 // test_predicates_vs_gmp.cpp.
 //
 // Exact evaluation on a lattice. On a lattice every sphere test ties and
@@ -172,8 +173,9 @@ class Static_filter_d {
     return decide<Side_of_sphere_recipe<D>, D + 2>(p, sphere_bound_);
   }
   /// side_of_oriented_sphere_d's sign (unperturbed), always: the static
-  /// bound first, then the filter cascade (stages::filtered_after_static) on
-  /// the same matrix and determinant. On surface samples, whose cells are
+  /// bound first, in 3D then the semi-static one (semi_static_decision),
+  /// then the filter cascade (stages::filtered_after_static) on the same
+  /// matrix and determinant. On surface samples, whose cells are
   /// small against the box, the static bound leaves most calls, and the
   /// cascade computing the determinant again took a tenth of a torus's
   /// construction. \pre the points lie in the box (and on the lattice).
@@ -183,9 +185,11 @@ class Static_filter_d {
   /// The same, with the semi-static bound tried before the box's when
   /// Semi_static_first (3D: where the box's bound leaves many calls, its
   /// branch mispredicts; Incremental_delaunay::choose_filter_order). When the
-  /// box's bound is tried first, box_bound_left counts the calls it leaves.
+  /// box's bound is tried first, box_bound_left counts the calls it leaves
+  /// (and the lattice's own bound after it).
   template <bool Semi_static_first>
-  [[gnu::always_inline]] Sign side_of_oriented_sphere_sign(const Sphere_points<D>& p, std::uint32_t& box_bound_left) const {
+  [[gnu::always_inline]] Sign side_of_oriented_sphere_sign(const Sphere_points<D>& p,
+                                                           std::uint32_t& box_bound_left) const {
     return *sphere_through_filters<true, Semi_static_first>(p, &box_bound_left);
   }
   /// The same through the static and the semi-static filter only (on the
@@ -249,8 +253,8 @@ class Static_filter_d {
       else return std::nullopt;
     }
     if (const auto s = static_decision<Recipe>(det, sphere_bound_)) return s;
-    if (box_bound_left) ++*box_bound_left;
     if (const auto s = lattice_decision<Recipe>(m, det)) return s;
+    if (box_bound_left) ++*box_bound_left;
     if constexpr (D == 3) {
       if (const auto s = semi_static_decision<Recipe>(m, det)) return s;
       if constexpr (!Every_stage) return std::nullopt;
@@ -262,7 +266,8 @@ class Static_filter_d {
   /// call's own column maxima (error_bounds.hpp, steps 1–3, as
   /// stages::filter_decision), plus a floor, without that stage's checks of
   /// each column against the domain. In the box they are not needed:
-  ///  * no overflow: every M̂_j ≤ S_j ≤ 2^100 (the box passed the domain check);
+  ///  * no overflow: every spatial M̂_j ≤ S_j ≤ 2^100 (the box passed the
+  ///    domain check), the lifted one ≤ Σ_j S_j² ≤ 3·2^200;
   ///  * underflow: step 4 asks M̂_j ≥ 2^-100 so that what underflow loses is
   ///    negligible against ε·Π_j M̂_j; in the box it is below 2^-613 whatever
   ///    the columns (the derivation above, "Underflow"), so the floor 2^-600
