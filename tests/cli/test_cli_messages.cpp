@@ -173,7 +173,11 @@ TEST_CASE("the help and README state the region sizes of the code", "[cli][docs]
   const std::vector<std::string> phrases{
       "regions of n/4 points (" + n(dewall::smallest_default_region) + " to " + n(dewall::largest_default_region) + ")",
       "regions of at most " + n(dewall::largest_default_streaming_region) + " points",
-      "differ above " + n(4 * dewall::largest_default_streaming_region) + " points",
+      "n/" + n(dewall::streaming_region_share) + " from " +
+          n(dewall::streaming_region_share * dewall::largest_default_streaming_region) + " points on, at most " +
+          n(dewall::largest_default_region),
+      "between " + n(4 * dewall::largest_default_streaming_region) + " and " +
+          n(dewall::streaming_region_share * dewall::largest_default_region) + " points",
       "inputs of up to " + n(dewall::largest_automatic_whole_input) + " points"};
   std::ifstream in(std::string(DEWALL_SOURCE_DIR) + "/README.md");
   REQUIRE(in);

@@ -235,6 +235,21 @@ TEST_CASE("engines: streaming gives the collected set, and the collected list on
     }
 }
 
+TEST_CASE("engines: streaming's default regions grow with the input from 2^20 points on, up to collecting's",
+          "[engine][stream]") {
+  const Options collecting{}, streaming{.stream = true};
+  CHECK(dewall::region_points_for(streaming, 100000) == 25000);
+  CHECK(dewall::region_points_for(streaming, 1000000) == dewall::largest_default_streaming_region);
+  CHECK(dewall::region_points_for(streaming, std::size_t{1} << 21) == 65536);
+  CHECK(dewall::region_points_for(streaming, 10000000) == dewall::largest_default_region);
+  for (std::size_t n = 1000; n < (std::size_t{1} << 26); n = n * 3 / 2) {
+    INFO(n);
+    CHECK(dewall::region_points_for(streaming, n) <= dewall::region_points_for(collecting, n));
+    if (n >= dewall::streaming_region_share * dewall::largest_default_region)
+      CHECK(dewall::region_points_for(streaming, n) == dewall::region_points_for(collecting, n));
+  }
+}
+
 TEST_CASE("engines: a stream settled at its first region never hands over", "[engine][stream]") {
   // A budget spent after the first region: uniform points in [0, 2) × [0, 1)²
   // beside points on a sphere, so the top wall cuts the uniform points (a

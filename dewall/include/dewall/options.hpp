@@ -120,7 +120,7 @@ struct Options {
   /// Engine::hybrid and automatic: the largest region left to the incremental
   /// construction; 0 chooses region_points_for(n): n / 4 within
   /// [smallest_default_region, largest_default_region], and with
-  /// Options::stream at most largest_default_streaming_region: two levels of
+  /// Options::stream at most largest_streaming_region(n): two levels of
   /// walls, four regions to run in parallel. The walls cost more per simplex
   /// than the incremental construction, so each level costs time on any
   /// number of cores; but a region's triangulation is in memory while it
@@ -150,6 +150,22 @@ struct Options {
 inline constexpr std::size_t smallest_default_region = 16384;
 inline constexpr std::size_t largest_default_region = 262144;
 inline constexpr std::size_t largest_default_streaming_region = 32768;
+/// Streaming's regions grow with the input beyond that: up to one
+/// streaming_region_share-th of it (and largest_default_region). From 2^20
+/// points on, the points and the walls' tree (about 80 bytes a point) outweigh
+/// the regions in flight (about 600 bytes a region's point), and each level of
+/// walls costs time: uniform 10^7 streamed, regions of 262144 points instead of
+/// 32768 took 50.5 s instead of 65.3 on one thread, 26.6 instead of 34.0 on
+/// two, at the same peak, 815 MB (docs/engines.md).
+inline constexpr std::size_t streaming_region_share = 32;
+
+/// The largest default region when streaming n points.
+constexpr std::size_t largest_streaming_region(std::size_t n) {
+  const std::size_t share = n / streaming_region_share;
+  return share < largest_default_streaming_region ? largest_default_streaming_region
+         : share > largest_default_region          ? largest_default_region
+                                                   : share;
+}
 
 /// Engine::automatic builds collected inputs of at most this many distinct
 /// points by the incremental construction alone (automatic_whole_limit).
@@ -162,7 +178,7 @@ inline constexpr std::size_t largest_automatic_whole_input = 33554432;
 /// The region size Options::region_points asks for, for n points.
 constexpr std::size_t region_points_for(const Options& o, std::size_t n) {
   if (o.region_points) return o.region_points;
-  const std::size_t largest = o.stream ? largest_default_streaming_region : largest_default_region;
+  const std::size_t largest = o.stream ? largest_streaming_region(n) : largest_default_region;
   return n / 4 < smallest_default_region ? smallest_default_region : n / 4 > largest ? largest : n / 4;
 }
 
