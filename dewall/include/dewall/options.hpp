@@ -151,20 +151,24 @@ inline constexpr std::size_t smallest_default_region = 16384;
 inline constexpr std::size_t largest_default_region = 262144;
 inline constexpr std::size_t largest_default_streaming_region = 32768;
 /// Streaming's regions grow with the input beyond that: up to one
-/// streaming_region_share-th of it (and largest_default_region). From 2^20
-/// points on, the points and the walls' tree (about 80 bytes a point) outweigh
-/// the regions in flight (about 600 bytes a region's point), and each level of
-/// walls costs time: uniform 10^7 streamed, regions of 262144 points instead of
-/// 32768 took 50.5 s instead of 65.3 on one thread, 26.6 instead of 34.0 on
-/// two, at the same peak, 815 MB (docs/engines.md).
-inline constexpr std::size_t streaming_region_share = 32;
+/// streaming_region_share-th of it, at most largest_streaming_region_at_scale.
+/// On millions of points the points and the walls' tree (about 80 bytes a
+/// point) outweigh the regions in flight, and each level of walls costs time:
+/// uniform 10^7 streamed on two threads, regions of 156250 points (n/64)
+/// instead of 32768 took 26.1 s instead of 34.0 at the same peak, 815 MB (n/32
+/// took 26.1 s at 915 MB); 10^8, regions of 2^20 points instead of 262144,
+/// 280 s instead of 301 at the same peak, 7.57 GB (docs/engines.md). Above
+/// collecting's largest_default_region: its cap is for a collected region's
+/// memory, which streaming does not keep.
+inline constexpr std::size_t streaming_region_share = 64;
+inline constexpr std::size_t largest_streaming_region_at_scale = std::size_t{1} << 20;
 
 /// The largest default region when streaming n points.
 constexpr std::size_t largest_streaming_region(std::size_t n) {
   const std::size_t share = n / streaming_region_share;
-  return share < largest_default_streaming_region ? largest_default_streaming_region
-         : share > largest_default_region          ? largest_default_region
-                                                   : share;
+  return share < largest_default_streaming_region    ? largest_default_streaming_region
+         : share > largest_streaming_region_at_scale ? largest_streaming_region_at_scale
+                                                     : share;
 }
 
 /// Engine::automatic builds collected inputs of at most this many distinct
