@@ -222,7 +222,7 @@ TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
     CHECK(cli("certify p.dwpt got.dwsx").status == 0);
   }
   SECTION("--region-points: streaming on one thread gives the collected bytes at the same region size") {
-    // (By default streaming takes smaller regions above 131072 points, so its order differs there.)
+    // (By default streaming takes other regions above 131072 points, so its order differs there.)
     REQUIRE(cli("triangulate p.dwpt --threads 1 --region-points 5000 -o collected.dwsx").status == 0);
     REQUIRE(cli("triangulate p.dwpt --threads 1 --region-points 5000 --stream -o streamed.dwsx").status == 0);
     CHECK(slurp(cli.path("streamed.dwsx")) == slurp(cli.path("collected.dwsx")));

@@ -241,12 +241,15 @@ TEST_CASE("engines: streaming's default regions grow with the input from 2^21 po
   CHECK(dewall::region_points_for(streaming, 1000000) == dewall::largest_default_streaming_region);
   CHECK(dewall::region_points_for(streaming, std::size_t{1} << 22) == 65536);
   CHECK(dewall::region_points_for(streaming, 10000000) == 156250);
+  // Rounded up: six levels of halves of 10^7 + 63 points hold at most 156251.
+  CHECK(dewall::region_points_for(streaming, 10000063) == 156251);
   CHECK(dewall::region_points_for(streaming, 100000000) == dewall::largest_streaming_region_at_scale);
   std::size_t last = 0;
   for (std::size_t n = 1000; n < (std::size_t{1} << 34); n = n * 3 / 2) {
     INFO(n);
     const std::size_t region = dewall::region_points_for(streaming, n);
     CHECK(region >= last);  // never smaller for more points
+    CHECK(region <= dewall::largest_streaming_region_at_scale);
     // Smaller than a collected region as long as that one is below its cap.
     if (dewall::region_points_for(collecting, n) < dewall::largest_default_region)
       CHECK(region <= dewall::region_points_for(collecting, n));

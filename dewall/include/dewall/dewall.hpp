@@ -159,7 +159,7 @@ class Sink_output final : public Simplex_output<D> {
 /// and not kept (memory: the points, the search structure and the regions in
 /// progress); the set is the same, and with one thread (Options::threads = 1)
 /// so is the order, given the same Options::region_points (by default
-/// streaming takes smaller regions above 131072 points, and Engine::automatic
+/// streaming takes other regions above 131072 points, and Engine::automatic
 /// collecting builds up to automatic_whole_limit points without regions).
 /// The sink is never called concurrently, but it may be called from a thread
 /// other than the caller's (the incremental construction hands its cells

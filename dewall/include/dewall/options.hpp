@@ -119,20 +119,21 @@ struct Options {
   double handover_candidates_per_search = 150;
   /// Engine::hybrid and automatic: the largest region left to the incremental
   /// construction; 0 chooses region_points_for(n): n / 4 within
-  /// [smallest_default_region, largest_default_region], and with
-  /// Options::stream at most largest_streaming_region(n): two levels of
-  /// walls, four regions to run in parallel. The walls cost more per simplex
-  /// than the incremental construction, so each level costs time on any
-  /// number of cores; but a region's triangulation is in memory while it
-  /// runs, so the upper bound keeps large inputs from holding gigabytes per
-  /// region, and streaming, which is for memory, takes smaller ones. Fixed
+  /// [smallest_default_region, largest_default_region] (two levels of walls,
+  /// four regions to run in parallel), and with Options::stream at most
+  /// largest_streaming_region(n). The walls cost more per simplex than the
+  /// incremental construction, so each level costs time on any number of
+  /// cores; but a region's triangulation is in memory while it runs, so the
+  /// upper bound keeps large inputs from holding gigabytes per region, and
+  /// streaming, which is for memory, takes smaller ones up to millions of
+  /// points. Fixed
   /// by n and Options::stream, never by the number of threads, so the output
   /// does not depend on them. The measurements: docs/engines.md.
   std::size_t region_points = 0;
   /// triangulate_to hands the simplices to its sink as they are built, and
   /// does not keep them (dewall.hpp). The same simplices; with one thread in
   /// the order collecting gives with the same region_points (by default
-  /// streaming takes smaller regions above 131072 points, and Engine::automatic
+  /// streaming takes other regions above 131072 points, and Engine::automatic
   /// collecting builds up to automatic_whole_limit points without regions), with more in an
   /// order that depends on the threads' timing.
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
@@ -151,21 +152,25 @@ inline constexpr std::size_t smallest_default_region = 16384;
 inline constexpr std::size_t largest_default_region = 262144;
 inline constexpr std::size_t largest_default_streaming_region = 32768;
 /// Streaming's regions grow with the input beyond that: up to one
-/// streaming_region_share-th of it, at most largest_streaming_region_at_scale.
-/// On millions of points the points and the walls' tree (about 80 bytes a
-/// point) outweigh the regions in flight, and each level of walls costs time:
+/// streaming_region_share-th of it (rounded up: a split's halves differ by
+/// one point, and a half one point above the size would take another level
+/// of walls), at most largest_streaming_region_at_scale. On millions of
+/// points the points and the walls' tree (about 80 bytes a point) outweigh
+/// the regions in flight, one a thread, and each level of walls costs time:
 /// uniform 10^7 streamed on two threads, regions of 156250 points (n/64)
-/// instead of 32768 took 26.1 s instead of 34.0 at the same peak, 815 MB (n/32
-/// took 26.1 s at 915 MB); 10^8, regions of 2^20 points instead of 262144,
-/// 280 s instead of 301 at the same peak, 7.57 GB (docs/engines.md). Above
-/// collecting's largest_default_region: its cap is for a collected region's
-/// memory, which streaming does not keep.
+/// instead of 32768 took 26.1 s instead of 34.0 at the same peak, 815 MB
+/// (n/32: 26.1 s at 915 MB); 10^8, regions of 2^20 points instead of
+/// 262144, 280 s instead of 301 at the same peak, 7.57 GB (docs/engines.md).
+/// A region in flight holds about 170–300 bytes a point, so each thread adds
+/// up to 0.3 GB at 2^20 (Options::region_points sets a smaller size). Above
+/// collecting's largest_default_region: collecting holds its output too,
+/// streaming only its regions in flight.
 inline constexpr std::size_t streaming_region_share = 64;
 inline constexpr std::size_t largest_streaming_region_at_scale = std::size_t{1} << 20;
 
 /// The largest default region when streaming n points.
 constexpr std::size_t largest_streaming_region(std::size_t n) {
-  const std::size_t share = n / streaming_region_share;
+  const std::size_t share = (n + streaming_region_share - 1) / streaming_region_share;
   return share < largest_default_streaming_region    ? largest_default_streaming_region
          : share > largest_streaming_region_at_scale ? largest_streaming_region_at_scale
                                                      : share;
