@@ -126,9 +126,8 @@ struct Options {
   /// cores; but a region's triangulation is in memory while it runs, so the
   /// upper bound keeps large inputs from holding gigabytes per region, and
   /// streaming, which is for memory, takes smaller ones up to millions of
-  /// points. Fixed
-  /// by n and Options::stream, never by the number of threads, so the output
-  /// does not depend on them. The measurements: docs/engines.md.
+  /// points. Fixed by n and Options::stream, never by the number of threads,
+  /// so the output does not depend on them. The measurements: docs/engines.md.
   std::size_t region_points = 0;
   /// triangulate_to hands the simplices to its sink as they are built, and
   /// does not keep them (dewall.hpp). The same simplices; with one thread in
