@@ -5,7 +5,7 @@
 // behind each step):
 //  1. In 4D and up: the incremental construction alone (the walls and the
 //     regions' filter only add to it there).
-//  2. At most automatic_whole_limit distinct points (options.hpp: 1048576
+//  2. At most automatic_whole_limit distinct points (options.hpp: 2^25
 //     collected with the default regions, else one region's worth): the
 //     incremental construction alone (below that the walls and regions cost
 //     more than they gain on one thread and on two).
@@ -67,6 +67,11 @@ Statistics triangulate_automatic(std::span<const kernel::Point_d<D>> points, con
                                  Simplex_output<D>& output, const Incremental_choice<D>& incremental) {
   using K = kernel::Filtered_kernel_d<D>;
   if constexpr (D >= 4) return incremental.whole(points, output);
+  // An input of at most as many points as the limit (then its distinct
+  // points are within their own limit too: automatic_whole_limit is constant
+  // up to there) goes to the incremental construction, which finds the
+  // repeats itself on the way (triangulate_incremental).
+  if (points.size() <= automatic_whole_limit(options, points.size())) return incremental.whole(points, output);
   // The input checks once, for both engines.
   const Distinct_points distinct = distinct_points<K>(K{}, points);
   if (distinct.size() <= automatic_whole_limit(options, distinct.size())) return incremental.whole(points, output, &distinct);

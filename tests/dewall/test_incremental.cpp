@@ -68,12 +68,29 @@ dewall::test::Simplex_set<D> incremental_delaunay(const std::vector<dewall::kern
   return out;
 }
 
+/// The same, the repeats left to the engine (build_dropping_repeats).
+template <int D>
+dewall::test::Simplex_set<D> incremental_delaunay_dropping_repeats(const std::vector<dewall::kernel::Point_d<D>>& points) {
+  Incremental_delaunay<D> dt;
+  dewall::test::Simplex_set<D> out;
+  if (!dt.build_dropping_repeats(
+          points.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[k].x; },
+          [](std::size_t k) { return k; }, [] {}))
+    return out;
+  CHECK(dt.is_valid());
+  std::set<std::array<double, D>> distinct;  // −0 and +0 alike, as in the engine
+  for (const auto& p : points) distinct.insert(p.x);
+  CHECK(dt.vertices() == distinct.size());
+  return finite_cells(dt);
+}
+
 template <int D>
 void check_against_cgal(const std::vector<dewall::kernel::Point_d<D>>& points, bool check_each_insertion = false) {
   const auto expected = dewall::test::cgal_delaunay<D>(points);
   const auto ours = incremental_delaunay<D>(points, check_each_insertion);
   CHECK(ours.size() == expected.size());
   CHECK(ours == expected);
+  CHECK(incremental_delaunay_dropping_repeats<D>(points) == expected);
 }
 
 template <int D>
@@ -171,6 +188,54 @@ TEST_CASE("incremental: the BRIO order is a permutation, the same on every run",
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t i = 0; i < 100; ++i) CHECK(sorted[i] == i);
   }
+}
+
+TEST_CASE("incremental: the BRIO order of the distinct points is brio_order without the repeats", "[incremental]") {
+  std::mt19937_64 rng(36);
+  std::uniform_int_distribution<int> value(-3, 3);
+  const auto check = [](const std::vector<std::array<double, 2>>& points) {
+    const auto coords = [&](std::size_t i) -> const std::array<double, 2>& { return points[i]; };
+    // The first occurrences by brute force: a point repeats when an earlier one equals it.
+    std::vector<std::uint32_t> first;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      bool repeated = false;
+      for (std::size_t j = 0; j < i && !repeated; ++j) repeated = points[j] == points[i];
+      if (!repeated) first.push_back(static_cast<std::uint32_t>(i));
+    }
+    const auto box = dewall::detail::bounding_box<2>(points.size(), coords);
+    const auto distinct = dewall::detail::brio_order_of_distinct<2>(points.size(), coords, box);
+    auto kept = distinct;
+    std::sort(kept.begin(), kept.end());
+    CHECK(kept == first);
+    // In brio_order's order: the whole order with the repeats taken out.
+    std::vector<std::uint32_t> expected;
+    for (const std::uint32_t i : dewall::detail::brio_order<2>(points.size(), coords, box))
+      if (std::binary_search(first.begin(), first.end(), i)) expected.push_back(i);
+    CHECK(distinct == expected);
+  };
+  // Few values, −0 and +0 among them: every point repeats many times, and runs
+  // of equal keys hold different points (grid cells coarser than the values).
+  std::vector<std::array<double, 2>> repeats(3000);
+  for (auto& p : repeats) {
+    p = {value(rng) * 0.25, value(rng) * 0.25};
+    for (double& x : p)
+      if (x == 0 && rng() % 2) x = -0.0;
+  }
+  check(repeats);
+  // A cluster in one grid cell (the box is set by two far points): runs of
+  // more than 16 points, sorted by coordinates; one point many times.
+  std::vector<std::array<double, 2>> cluster{{-1e6, -1e6}, {1e6, 1e6}};
+  std::uniform_real_distribution<double> tiny(0, 1e-9);
+  for (int i = 0; i < 2000; ++i) {
+    const std::array<double, 2> p = i >= 30 && i % 3 == 0 ? cluster[2 + i % 7] : std::array<double, 2>{tiny(rng), tiny(rng)};
+    cluster.push_back(p);
+  }
+  for (int i = 0; i < 500; ++i) cluster.push_back({0.5, 0.5});
+  check(cluster);
+  // No repeats: the whole order.
+  std::vector<std::array<double, 2>> plain(1000);
+  for (auto& p : plain) p = {tiny(rng), tiny(rng)};
+  check(plain);
 }
 
 TEST_CASE("incremental: the radix sort is std::stable_sort, and the order the same on one and two threads",

@@ -155,9 +155,33 @@ class Incremental_delaunay {
   bool build(std::size_t count, Coordinates&& coordinates, Id&& id, const Box<D>* filter_box, Gathered&& gathered) {
     if (count < static_cast<std::size_t>(D + 1)) return false;
     const Box<D> box = bounding_box<D>(count, coordinates);
-    std::vector<std::uint32_t> order = brio_order<D>(count, coordinates, box);
+    return build_in_order(count, brio_order<D>(count, coordinates, box), box, coordinates, id, filter_box, gathered);
+  }
+  /// As build(count, coordinates, id, nullptr, gathered) for points that may
+  /// repeat (finite): of equal points (−0 and +0 alike) only the first, the
+  /// smallest k, becomes a vertex (vertices() counts them), as CGAL keeps the
+  /// vertex already there. The BRIO order finds the repeats on the way
+  /// (brio_order_of_distinct), so the caller needs no
+  /// kernel::first_occurrences beforehand. Returns false when the distinct
+  /// points do not span E^D (fewer than D + 1 of them included).
+  template <class Coordinates, class Id, class Gathered>
+  bool build_dropping_repeats(std::size_t count, Coordinates&& coordinates, Id&& id, Gathered&& gathered) {
+    if (count < static_cast<std::size_t>(D + 1)) return false;
+    const Box<D> box = bounding_box<D>(count, coordinates);
+    return build_in_order(count, brio_order_of_distinct<D>(count, coordinates, box), box, coordinates, id, nullptr,
+                          gathered);
+  }
+
+ private:
+  /// build's steps once the insertion order is known: `order` holds the
+  /// indices (among `input_count`, whose box is `box`) of the points to insert.
+  template <class Coordinates, class Id, class Gathered>
+  bool build_in_order(std::size_t input_count, std::vector<std::uint32_t> order, const Box<D>& box,
+                      Coordinates& coordinates, Id& id, const Box<D>* filter_box, Gathered& gathered) {
+    const std::size_t count = order.size();
     const Box<D>& filter_bounds = filter_box ? *filter_box : box;
-    static_filter_ = kernel::Static_filter_d<D>(filter_bounds.lo, filter_bounds.hi, lattice_unit(count, coordinates));
+    static_filter_ =
+        kernel::Static_filter_d<D>(filter_bounds.lo, filter_bounds.hi, lattice_unit(input_count, coordinates));
     if (!start(coordinates, order)) return false;
     reserve(expected_cells(count));
     points_.resize(count);
@@ -197,6 +221,8 @@ class Incremental_delaunay {
     else insert_vertices(sample, count);
     return true;
   }
+
+ public:
 
   /// Inserts `count` more points after a successful build (each distinct from
   /// every vertex, and inside the box the static filter was made for: the

@@ -56,11 +56,10 @@ class Distinct_points {
   std::size_t size_ = 0;
 };
 
-/// The distinct points of the input (Distinct_points). Throws Invalid_input
-/// on more than 2^32 - 2 points (indices are 32-bit), non-finite coordinates,
-/// or fewer than D + 1 distinct points.
+/// Throws Invalid_input on more than 2^32 - 2 points (indices are 32-bit) or
+/// a non-finite coordinate: the checks of distinct_points before the repeats.
 template <class K>
-Distinct_points distinct_points(const K& k, std::span<const typename K::Point_d> points) {
+void require_finite_points(const K& k, std::span<const typename K::Point_d> points) {
   constexpr int D = K::dimension;
   if (points.size() >= (std::size_t{1} << 32) - 1) throw Invalid_input("too many points (at most 2^32 - 2)");
   const auto coords = k.approximate_coordinates_object();
@@ -70,6 +69,15 @@ Distinct_points distinct_points(const K& k, std::span<const typename K::Point_d>
       if (!kernel::is_finite(x[j]))
         throw Invalid_input(i, "has a non-finite coordinate (NaN or infinity)");
   }
+}
+
+/// The distinct points of the input (Distinct_points). Throws Invalid_input
+/// as require_finite_points, or on fewer than D + 1 distinct points.
+template <class K>
+Distinct_points distinct_points(const K& k, std::span<const typename K::Point_d> points) {
+  constexpr int D = K::dimension;
+  require_finite_points<K>(k, points);
+  const auto coords = k.approximate_coordinates_object();
   const std::vector<std::uint32_t> first = kernel::first_occurrences(points, k.compare_lexicographically_d_object(), coords);
   std::size_t distinct = 0;
   for (std::size_t i = 0; i < first.size(); ++i) distinct += first[i] == i ? 1 : 0;

@@ -8,9 +8,11 @@
 // keep the cavities small in expectation (a pure curve order can build long
 // thin cells first, on a lattice for example).
 //
-// 1. Rounds: each point draws its round from a seeded hash of its index (our
-//    own generator: the order, hence the output's cell order, is the same on
-//    every platform): the last round with probability 3/4, the one before
+// 1. Rounds: each point draws its round from a seeded hash of its
+//    coordinates (our own generator: the order, hence the output's cell
+//    order, is the same on every platform; of the coordinates, not of the
+//    index, so that equal points draw the same round: step 4): the last
+//    round with probability 3/4, the one before
 //    with 3/16, and so on, the first round taking all points that would come
 //    before a round of `smallest_round` points (CGAL's multiscale sort uses the
 //    same ratio; the draws replace its shuffle, which reads the points in
@@ -33,6 +35,12 @@
 //    (the coordinates read once, in sequence) and radix sorted (stable: equal
 //    keys keep input order); both in parallel, with the same result for any
 //    number of threads (the serial parts of a two-core build: docs/engines.md).
+// 4. Optionally, repeated points dropped on the way (brio_order_of_distinct):
+//    equal points have equal keys, so after the sort they lie in one run of
+//    equal keys, in input order; comparing the points within each run (most
+//    runs are one point long) finds them without the hash table of
+//    kernel::first_occurrences, which cost 13–26 ms of a 2D construction's
+//    450 at 10^6 points (docs/engines.md).
 // Floating point only ranks here: the order changes the time, never the
 // triangulation (which is a function of the point set).
 #pragma once
@@ -42,6 +50,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <utility>
 #include <vector>
 
@@ -49,6 +58,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 namespace dewall::detail {
@@ -234,14 +244,40 @@ Box<D> bounding_box(std::size_t count, Coords&& coords) {
   return box;
 }
 
-/// The BRIO order of `count` points: a permutation of 0 … count − 1.
-/// `coords(i)` gives point i's coordinates (an array of D doubles, finite;
-/// called from several threads at once);
-/// `box` is bounding_box(count, coords). Deterministic: a function of the
-/// coordinates and `seed`.
-template <int D, class Coords>
-std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const Box<D>& box,
-                                      std::size_t smallest_round = 250, std::uint64_t seed = 0x5eed) {
+namespace brio {
+
+/// Appends to `order` the first occurrence of each point of `run` (indices of
+/// points with one key, ascending): the points not equal to an earlier one.
+template <class Coords>
+void append_first_occurrences(std::span<const std::uint32_t> run, Coords& coords, std::vector<std::uint32_t>& order) {
+  if (run.size() <= 16) {  // the usual case by far: compare each point with those kept before it
+    const std::size_t kept_before = order.size();
+    for (const std::uint32_t i : run) {
+      bool repeated = false;
+      for (std::size_t k = kept_before; k < order.size() && !repeated; ++k) repeated = coords(order[k]) == coords(i);
+      if (!repeated) order.push_back(i);
+    }
+    return;
+  }
+  // Many points in one grid cell of one round (clusters, or one point
+  // repeated many times): sorted by coordinates, stably (equal points keep
+  // ascending indices), every point after the first of its group repeats.
+  std::vector<std::uint32_t> by_point(run.begin(), run.end());
+  std::stable_sort(by_point.begin(), by_point.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return coords(a) < coords(b); });
+  std::vector<std::uint32_t> repeats;
+  for (std::size_t k = 1; k < by_point.size(); ++k)
+    if (coords(by_point[k]) == coords(by_point[k - 1])) repeats.push_back(by_point[k]);
+  std::sort(repeats.begin(), repeats.end());
+  for (const std::uint32_t i : run)
+    if (!std::binary_search(repeats.begin(), repeats.end(), i)) order.push_back(i);
+}
+
+/// brio_order and brio_order_of_distinct: the BRIO order, without the
+/// repeated points when Drop_repeats.
+template <bool Drop_repeats, int D, class Coords>
+std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D>& box, std::size_t smallest_round,
+                                 std::uint64_t seed) {
   const auto& lo = box.lo;  // not a structured binding: clang cannot capture one in a lambda
   const auto& hi = box.hi;
   // Grid cells of the Hilbert order: 2^bits a side, at least 4 per point
@@ -271,7 +307,7 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
       t = t < 0 || !(t == t) ? 0 : t > cells ? cells : t;  // overflowing differences (|x| near 2^1023)
       cell[j] = static_cast<std::uint32_t>(t);
     }
-    std::uint64_t draw = mix64(seed ^ i);
+    std::uint64_t draw = mix64(seed ^ kernel::coordinate_hash(x));
     int level = 0;
     while (level < last && (draw & 3) == 0) ++level, draw >>= 2;
     const int round = last - level;
@@ -292,7 +328,23 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
       for (std::size_t i = range.begin(); i < range.end(); ++i) keyed[i] = item_of(i);
     });
     radix_sort(keyed, first_bit, first_bit + key_bits, key_of);
-    for (std::size_t k = 0; k < count; ++k) order[k] = index_of(keyed[k]);
+    if constexpr (!Drop_repeats) {
+      for (std::size_t k = 0; k < count; ++k) order[k] = index_of(keyed[k]);
+    } else {
+      order.clear();
+      std::vector<std::uint32_t> run;
+      const auto key = [&](std::size_t k) { return static_cast<std::uint64_t>(key_of(keyed[k])) >> first_bit; };
+      for (std::size_t a = 0, b; a < count; a = b) {
+        for (b = a + 1; b < count && key(b) == key(a);) ++b;
+        if (b - a == 1) {
+          order.push_back(index_of(keyed[a]));
+        } else {
+          run.clear();
+          for (std::size_t k = a; k < b; ++k) run.push_back(index_of(keyed[k]));
+          append_first_occurrences(std::span<const std::uint32_t>(run), coords, order);
+        }
+      }
+    }
   };
   if (key_bits <= 32)  // key and index in one word (key above): half the memory each pass moves
     sort_keys([&](std::size_t i) { return key_of_point(i) << 32 | i; }, 32, [](std::uint64_t w) { return w; },
@@ -302,6 +354,30 @@ std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const 
               [](const std::pair<std::uint64_t, std::uint32_t>& item) { return item.first; },
               [](const std::pair<std::uint64_t, std::uint32_t>& item) { return item.second; });
   return order;
+}
+
+}  // namespace brio
+
+/// The BRIO order of `count` points: a permutation of 0 … count − 1.
+/// `coords(i)` gives point i's coordinates (an array of D doubles, finite;
+/// called from several threads at once);
+/// `box` is bounding_box(count, coords). Deterministic: a function of the
+/// coordinates and `seed`.
+template <int D, class Coords>
+std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords, const Box<D>& box,
+                                      std::size_t smallest_round = 250, std::uint64_t seed = 0x5eed) {
+  return brio::order<false, D>(count, coords, box, smallest_round, seed);
+}
+
+/// The BRIO order of the distinct points among `count` (as brio_order; equal
+/// coordinates, −0 and +0 alike, are one point): of each set of equal points
+/// only the first occurrence (the smallest index) appears, the others are
+/// left out. The order of the points kept is brio_order's with the others
+/// removed.
+template <int D, class Coords>
+std::vector<std::uint32_t> brio_order_of_distinct(std::size_t count, Coords&& coords, const Box<D>& box,
+                                                  std::size_t smallest_round = 250, std::uint64_t seed = 0x5eed) {
+  return brio::order<true, D>(count, coords, box, smallest_round, seed);
 }
 
 /// The same, computing the box.

@@ -16,6 +16,33 @@
 
 namespace dewall::kernel {
 
+/// A 64-bit hash of a point's coordinates (a range of doubles), equal for
+/// equal points: −0 hashes as +0 (they compare equal); on the bits, so that
+/// neither the rounding mode nor a user's -ffast-math can change it. Used by
+/// first_occurrences' table and by the BRIO order's rounds, which must put
+/// equal points in one round (dewall/detail/spatial_order.hpp).
+template <class Coordinates>
+constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
+  std::uint64_t h = 0x9e3779b97f4a7c15u;
+  for (double c : coordinates) {
+    std::uint64_t bits = std::bit_cast<std::uint64_t>(c);
+    if ((bits << 1) == 0) bits = 0;
+    h ^= bits;
+    h *= 0xbf58476d1ce4e5b9u;
+    h ^= h >> 31;
+  }
+  // A full 64-bit finalizer (MurmurHash3's fmix64 constants): every bit of
+  // every coordinate reaches the slot bits, so lattices and dyadic
+  // coordinates do not pile up (without it, 793 comparisons per point on
+  // x in 200 values, y = ±2^k).
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdu;
+  h ^= h >> 33;
+  h *= 0xc4ceb9fe1a85ec53u;
+  h ^= h >> 33;
+  return h;
+}
+
 /// For each point i, the smallest index j with the same coordinates as point i
 /// (i itself when no earlier point equals it), equality decided by `compare`, a
 /// kernel's exact lexicographic order (Compare_lexicographically_d: −0 and +0
@@ -42,28 +69,7 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
   const std::size_t slots = std::bit_ceil(2 * n + 2), mask = slots - 1;
   constexpr std::uint64_t index_bits = 0xffffffffu, tag_bits = ~index_bits;
   std::vector<std::uint64_t> table(slots, 0);
-  const auto hash_of = [&](std::size_t i) -> std::uint64_t {
-    std::uint64_t h = 0x9e3779b97f4a7c15u;
-    for (double c : coordinates(points[i])) {
-      // −0 hashes as +0 (they compare equal); on the bits, so that neither
-      // the rounding mode nor a user's -ffast-math can change it.
-      std::uint64_t bits = std::bit_cast<std::uint64_t>(c);
-      if ((bits << 1) == 0) bits = 0;
-      h ^= bits;
-      h *= 0xbf58476d1ce4e5b9u;
-      h ^= h >> 31;
-    }
-    // A full 64-bit finalizer (MurmurHash3's fmix64 constants): every bit of
-    // every coordinate reaches the slot bits, so lattices and dyadic
-    // coordinates do not pile up (without it, 793 comparisons per point on
-    // x in 200 values, y = ±2^k).
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdu;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53u;
-    h ^= h >> 33;
-    return h;
-  };
+  const auto hash_of = [&](std::size_t i) { return coordinate_hash(coordinates(points[i])); };
   // The slots are random, each a cache miss: they are hashed and asked for
   // `ahead` points in advance (measured: the probes were most of the time).
   constexpr std::size_t ahead = 16;
