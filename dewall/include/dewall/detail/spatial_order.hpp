@@ -334,8 +334,9 @@ std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D
       order.clear();
       std::vector<std::uint32_t> run;
       const auto key = [&](std::size_t k) { return static_cast<std::uint64_t>(key_of(keyed[k])) >> first_bit; };
-      for (std::size_t a = 0, b; a < count; a = b) {
-        for (b = a + 1; b < count && key(b) == key(a);) ++b;
+      for (std::size_t a = 0; a < count;) {  // runs [a, b) of equal keys
+        std::size_t b = a + 1;
+        while (b < count && key(b) == key(a)) ++b;
         if (b - a == 1) {
           order.push_back(index_of(keyed[a]));
         } else {
@@ -343,6 +344,7 @@ std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D
           for (std::size_t k = a; k < b; ++k) run.push_back(index_of(keyed[k]));
           append_first_occurrences(std::span<const std::uint32_t>(run), coords, order);
         }
+        a = b;
       }
     }
   };
