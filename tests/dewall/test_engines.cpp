@@ -91,6 +91,8 @@ Engine check_engines(const std::vector<dewall::kernel::Point_d<D>>& points,
   CHECK(forced.statistics.engine == Engine::dewall);
   CHECK(incremental.statistics.engine == Engine::cgal);
   CHECK(incremental.statistics.distinct_points == forced.statistics.distinct_points);
+  CHECK(own.statistics.distinct_points == forced.statistics.distinct_points);  // the repeats its own order dropped
+  CHECK(automatic.statistics.distinct_points == forced.statistics.distinct_points);
   return automatic.statistics.engine;
 }
 

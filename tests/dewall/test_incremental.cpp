@@ -213,8 +213,8 @@ TEST_CASE("incremental: the BRIO order of the distinct points is brio_order with
       if (std::binary_search(first.begin(), first.end(), i)) expected.push_back(i);
     CHECK(distinct == expected);
   };
-  // Few values, −0 and +0 among them: every point repeats many times, and runs
-  // of equal keys hold different points (grid cells coarser than the values).
+  // Few values, −0 and +0 among them: every point repeats many times (runs of
+  // one point, repeated).
   std::vector<std::array<double, 2>> repeats(3000);
   for (auto& p : repeats) {
     p = {value(rng) * 0.25, value(rng) * 0.25};
@@ -232,6 +232,13 @@ TEST_CASE("incremental: the BRIO order of the distinct points is brio_order with
   }
   for (int i = 0; i < 500; ++i) cluster.push_back({0.5, 0.5});
   check(cluster);
+  // Short runs (up to 16) holding different points and their repeats (A, B, A):
+  // values 10^-12 apart in one grid cell of a box set by two far points.
+  for (int size : {5, 9, 16}) {
+    std::vector<std::array<double, 2>> mixed{{-1, -1}, {1, 1}};
+    for (int i = 0; i < size - 2; ++i) mixed.push_back({(i * 7 % 3) * 1e-12, (i % 2) * 1e-12});
+    check(mixed);
+  }
   // No repeats: the whole order.
   std::vector<std::array<double, 2>> plain(1000);
   for (auto& p : plain) p = {tiny(rng), tiny(rng)};
