@@ -7,6 +7,7 @@
 // tested through the installed package by the fp_flags_* tests (examples/).
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cfenv>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "dewall/certify/certify.hpp"
+#include "dewall/detail/spatial_order.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
@@ -262,6 +264,26 @@ TEMPLATE_TEST_CASE_SIG("triangulate and certify are exact under flush-to-zero an
     CHECK(dewall::test::as_set<D>(t.simplices) == expected);
     const auto report = dewall::certify::certify<dewall::kernel::Filtered_kernel_d<D>>(points, t.simplices);
     CHECK(report.canonical);
+  }
+  CHECK(Hostile_environment::in_force());
+}
+
+TEST_CASE("the incremental engine tells a subnormal from 0 under denormals-are-zero, and drops the repeats",
+          "[dewall][fp-environment]") {
+  // (0, 0), (0, 2^-1074) and (0, −0) share a grid cell of the BRIO order (the
+  // corners set the box) and a round (one round below 250 points), so they
+  // are compared in one run, where DAZ makes the hardware call all three equal.
+  const std::vector<Point_d<2>> points{{{-1, -1}}, {{1, 1}}, {{1, -1}}, {{0, 0}}, {{0, 0x1p-1074}}, {{0, -0.0}}, {{-1, 1}}};
+  const auto expected = dewall::test::cgal_delaunay<2>(points);  // in the default environment
+  const Hostile_environment hostile;
+  const auto coords = [&](std::size_t i) -> const std::array<double, 2>& { return points[i].x; };
+  const auto order = dewall::detail::brio_order_of_distinct<2>(points.size(), coords,
+                                                               dewall::detail::bounding_box<2>(points.size(), coords));
+  CHECK(order.size() == 6);  // (0, −0) repeats (0, 0); (0, 2^-1074) does not
+  for (const dewall::Engine engine : {dewall::Engine::incremental, dewall::Engine::automatic}) {
+    const auto t = dewall::triangulate<2>(points, dewall::Options{.parallel_depth = 0, .engine = engine});
+    CHECK(dewall::test::as_set<2>(t.simplices) == expected);
+    CHECK(t.statistics.distinct_points == 6);
   }
   CHECK(Hostile_environment::in_force());
 }

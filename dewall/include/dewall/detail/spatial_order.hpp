@@ -61,6 +61,7 @@
 
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/kernel/point.hpp"
 
 namespace dewall::detail {
 
@@ -249,38 +250,45 @@ namespace brio {
 
 /// Appends to `order` the first occurrence of each point of `run` (indices of
 /// points with one key, ascending): the points not equal to an earlier one.
+/// Equal as the kernel's exact lexicographic order has it (on the bits: a
+/// subnormal is not 0 even with denormals-are-zero on; −0 and +0 alike).
 template <class Coords>
 void append_first_occurrences(std::span<const std::uint32_t> run, Coords& coords, std::vector<std::uint32_t>& order) {
+  const auto compare = [&](std::uint32_t a, std::uint32_t b) {
+    return kernel::compare_lexicographically(coords(a), coords(b));
+  };
   if (run.size() <= 16) {  // the usual case by far: compare each point with those kept before it
     const std::size_t kept_before = order.size();
     for (const std::uint32_t i : run) {
       bool repeated = false;
-      for (std::size_t k = kept_before; k < order.size() && !repeated; ++k) repeated = coords(order[k]) == coords(i);
+      for (std::size_t k = kept_before; k < order.size() && !repeated; ++k)
+        repeated = compare(order[k], i) == kernel::EQUAL;
       if (!repeated) order.push_back(i);
     }
     return;
   }
   // Many points in one grid cell of one round: one point repeated many
-  // times, or a cluster. The copies of the run's first point go in one pass
-  // (a point repeated 10^6 times then sorts nothing: 148 ms sorted, against
-  // the hash table's 17), the rest are sorted by (coordinates, index), copied
-  // rather than read through their indices at every comparison, and each
-  // after the first of its group repeats (−0 and +0 alike: `<` on doubles).
-  using Point = std::remove_cvref_t<decltype(coords(run[0]))>;
-  const Point first = coords(run[0]);
-  std::vector<std::pair<Point, std::uint32_t>> others;
-  for (const std::uint32_t i : run.subspan(1))
-    if (!(coords(i) == first)) others.push_back({coords(i), i});
-  std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) {
-    return a.first < b.first || (!(b.first < a.first) && a.second < b.second);
-  });
+  // times, or a cluster. The copies of the run's first point are found in
+  // one pass (a point repeated 10^6 times then sorts nothing: 148 ms sorted,
+  // against the hash table's 17), the rest sorted by (point, index), their
+  // coordinates copied rather than read through the index at every
+  // comparison, and each after the first of its group repeats.
   std::vector<std::uint32_t> repeats;
+  std::vector<std::pair<std::remove_cvref_t<decltype(coords(run[0]))>, std::uint32_t>> others;
+  for (const std::uint32_t i : run.subspan(1)) {
+    if (compare(run[0], i) == kernel::EQUAL) repeats.push_back(i);
+    else others.push_back({coords(i), i});
+  }
+  std::sort(others.begin(), others.end(), [](const auto& a, const auto& b) {
+    const kernel::Comparison_result c = kernel::compare_lexicographically(a.first, b.first);
+    return c == kernel::SMALLER || (c == kernel::EQUAL && a.second < b.second);
+  });
   for (std::size_t k = 1; k < others.size(); ++k)
-    if (others[k].first == others[k - 1].first) repeats.push_back(others[k].second);
+    if (kernel::compare_lexicographically(others[k - 1].first, others[k].first) == kernel::EQUAL)
+      repeats.push_back(others[k].second);
   std::sort(repeats.begin(), repeats.end());
-  order.push_back(run[0]);
-  for (const std::uint32_t i : run.subspan(1))
-    if (!(coords(i) == first) && !std::binary_search(repeats.begin(), repeats.end(), i)) order.push_back(i);
+  for (const std::uint32_t i : run)
+    if (!std::binary_search(repeats.begin(), repeats.end(), i)) order.push_back(i);
 }
 
 /// brio_order and brio_order_of_distinct: the BRIO order, without the

@@ -50,14 +50,18 @@ constexpr std::int64_t order_key(double v) {
 /// Lexicographic comparison of the coordinates (x, then y, ...), exact.
 /// This is the total order of CGAL's `compare_xyz` / `Compare_lexicographically_d`,
 /// which the symbolic perturbation is defined on.
-template <int D>
-constexpr Comparison_result compare_lexicographically(const Point_d<D>& a, const Point_d<D>& b) {
-  for (int i = 0; i < D; ++i) {
+template <std::size_t D>
+constexpr Comparison_result compare_lexicographically(const std::array<double, D>& a, const std::array<double, D>& b) {
+  for (std::size_t i = 0; i < D; ++i) {
     const std::int64_t x = order_key(a[i]), y = order_key(b[i]);
     if (x < y) return SMALLER;
     if (x > y) return LARGER;
   }
   return EQUAL;
+}
+template <int D>
+constexpr Comparison_result compare_lexicographically(const Point_d<D>& a, const Point_d<D>& b) {
+  return compare_lexicographically(a.x, b.x);
 }
 
 /// True when v is neither NaN nor infinite, decided on the bits (exponent not
