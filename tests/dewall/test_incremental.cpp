@@ -190,6 +190,46 @@ TEST_CASE("incremental: the BRIO order is a permutation, the same on every run",
   }
 }
 
+TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its own", "[incremental]") {
+  // 3000 points in a box of 10^-6 beside two points at ±10^6: the whole
+  // cluster in one cell of the order's grid. Along the cluster's own grid the
+  // order's steps are short; in input order (random points) each would be
+  // about the cluster's size.
+  std::mt19937_64 rng(39);
+  const auto check = [&](auto dimension) {
+    constexpr int D = decltype(dimension)::value;
+    auto points = dewall::test::uniform<D>(3000, rng);
+    for (auto& p : points)
+      for (double& x : p.x) x *= 1e-6;
+    dewall::kernel::Point_d<D> far_low, far_high;
+    far_low.x.fill(-1e6);
+    far_high.x.fill(1e6);
+    points.push_back(far_low);
+    points.push_back(far_high);
+    const auto coords = [&](std::size_t i) -> const std::array<double, D>& { return points[i].x; };
+    const auto path = [&](const std::vector<std::uint32_t>& order) {
+      double length = 0;
+      for (std::size_t k = 1; k < order.size(); ++k) {
+        if (order[k] >= 3000 || order[k - 1] >= 3000) continue;  // the far points
+        double squared = 0;
+        for (int j = 0; j < D; ++j) squared += std::pow(points[order[k]].x[j] - points[order[k - 1]].x[j], 2);
+        length += std::sqrt(squared);
+      }
+      return length;
+    };
+    std::vector<std::uint32_t> input_order(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) input_order[i] = static_cast<std::uint32_t>(i);
+    const auto order = dewall::detail::brio_order<D>(points.size(), coords);
+    auto sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    CHECK(sorted == input_order);
+    CHECK(path(order) < path(input_order) / 5);
+    check_against_cgal<D>(points);
+  };
+  check(std::integral_constant<int, 2>{});
+  check(std::integral_constant<int, 3>{});
+}
+
 TEST_CASE("incremental: the BRIO order of the distinct points is brio_order without the repeats", "[incremental]") {
   std::mt19937_64 rng(36);
   std::uniform_int_distribution<int> value(-3, 3);
@@ -239,6 +279,12 @@ TEST_CASE("incremental: the BRIO order of the distinct points is brio_order with
     for (int i = 0; i < size - 2; ++i) mixed.push_back({(i * 7 % 3) * 1e-12, (i % 2) * 1e-12});
     check(mixed);
   }
+  // Points 2^-k (k < 600), some twice: each run's grid splits off a few and
+  // leaves the rest in its first cell, down to the last level of refinement.
+  std::vector<std::array<double, 2>> geometric;
+  for (int k = 0; k < 600; ++k) geometric.push_back({std::ldexp(1.0, -k), std::ldexp(1.0, -k)});
+  for (int k = 0; k < 600; k += 7) geometric.push_back({std::ldexp(1.0, -k), std::ldexp(1.0, -k)});
+  check(geometric);
   // No repeats: the whole order.
   std::vector<std::array<double, 2>> plain(1000);
   for (auto& p : plain) p = {tiny(rng), tiny(rng)};
