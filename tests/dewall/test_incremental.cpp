@@ -148,6 +148,17 @@ TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring ce
         FAIL("bits " << bits << ", cell (" << x[0] << ", " << x[1] << ")");
     }
   }
+  // 3D's table is Skilling's curve too: every cell up to 2^5 per axis, random ones above.
+  for (int bits = 1; bits <= 16; ++bits) {
+    const std::uint32_t side = 1u << bits;
+    for (std::uint32_t k = 0; k < (bits <= 5 ? side * side * side : 100000u); ++k) {
+      std::array<std::uint32_t, 3> x;
+      for (std::size_t i = 0; i < 3; ++i)
+        x[i] = bits <= 5 ? k >> (bits * static_cast<int>(i)) & (side - 1) : static_cast<std::uint32_t>(rng()) & (side - 1);
+      if (dewall::detail::hilbert_index<3>(x, bits) != dewall::detail::skilling_hilbert_index<3>(x, bits))
+        FAIL("bits " << bits << ", cell (" << x[0] << ", " << x[1] << ", " << x[2] << ")");
+    }
+  }
   // 3D's interleaving by masks against bit by bit, at every 16-bit value.
   for (std::uint32_t v = 0; v < (1u << 16); ++v) {
     std::uint64_t spread = 0;

@@ -132,9 +132,10 @@ struct Options {
   /// triangulate_to hands the simplices to its sink as they are built, and
   /// does not keep them (dewall.hpp). The same simplices; with one thread in
   /// the order collecting gives with the same region_points (by default
-  /// streaming takes other regions above 131072 points, and Engine::automatic
-  /// collecting builds up to automatic_whole_limit points without regions), with more in an
-  /// order that depends on the threads' timing.
+  /// streaming takes other regions above 131072 points, but for 2^24 − 63 to
+  /// 2^24 points, where both take 262144; and Engine::automatic collecting
+  /// builds up to automatic_whole_limit points without regions), with more
+  /// in an order that depends on the threads' timing.
   /// Simplices passed on cannot be taken back, so Engine::automatic decides
   /// once whether to hand over to the incremental engine: it holds what it
   /// builds until the first region's simplices are kept, and never hands over

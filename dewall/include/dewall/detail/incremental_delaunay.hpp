@@ -1204,7 +1204,9 @@ class Incremental_delaunay {
       auto local = [&](Index x) -> std::uint32_t {
         if (x == infinite) return 0;
         std::uint32_t i = (x * 0x9e3779b9u) >> (32 - local_bits);
-        while ((w.local[i].stamp == stamp) & (w.local[i].vertex != x)) i = (i + 1) & (local_table_size - 1);
+        // (& on the two tests' values, not &&: one branch, not two.)
+        while (static_cast<unsigned>(w.local[i].stamp == stamp) & static_cast<unsigned>(w.local[i].vertex != x))
+          i = (i + 1) & (local_table_size - 1);
         Local& l = w.local[i];
         const std::uint32_t fresh = l.stamp != stamp, keep = fresh - 1;  // keep: all ones when seen
         l.vertex = x;
