@@ -287,3 +287,23 @@ TEST_CASE("the incremental engine tells a subnormal from 0 under denormals-are-z
   }
   CHECK(Hostile_environment::in_force());
 }
+
+TEST_CASE("the BRIO order is the same under denormals-are-zero and upward rounding", "[dewall][fp-environment]") {
+  // Clusters whose runs get grids of their own (refined), among points with
+  // subnormal coordinates and a box whose scale rounds, beside far points.
+  std::mt19937_64 rng(41);
+  std::uniform_real_distribution<double> unit(0, 1);
+  std::vector<std::array<double, 2>> points{{-3e6, -1e6}, {3e6, 7e5}};
+  for (int i = 0; i < 3000; ++i) points.push_back({unit(rng) * 1e-6 / 3, unit(rng) * 0x1p-1060});
+  for (int i = 0; i < 1000; ++i) points.push_back({unit(rng) * 3 / 511, unit(rng) * 1e-300});
+  const auto coords = [&](std::size_t i) -> const std::array<double, 2>& { return points[i]; };
+  const auto box = dewall::detail::bounding_box<2>(points.size(), coords);
+  const auto plain = dewall::detail::brio_order<2>(points.size(), coords, box);
+  const auto distinct = dewall::detail::brio_order_of_distinct<2>(points.size(), coords, box);
+  const auto whole = dewall::detail::brio_order<2>(points.size(), coords);
+  const Hostile_environment hostile;
+  CHECK(dewall::detail::brio_order<2>(points.size(), coords, box) == plain);
+  CHECK(dewall::detail::brio_order_of_distinct<2>(points.size(), coords, box) == distinct);
+  CHECK(dewall::detail::brio_order<2>(points.size(), coords) == whole);  // the box computed inside too
+  CHECK(Hostile_environment::in_force());
+}

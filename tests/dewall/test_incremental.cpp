@@ -202,14 +202,15 @@ TEST_CASE("incremental: the BRIO order is a permutation, the same on every run",
 }
 
 TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its own", "[incremental]") {
-  // 3000 points in a box of 10^-6 beside two points at ±10^6: the whole
-  // cluster in one cell of the order's grid. Along the cluster's own grid the
+  // 6000 points in a box of 10^-6 beside two points at ±10^6: the whole
+  // cluster in one cell of the order's grid (its last round, over 4096
+  // points, sorted by the radix sort). Along the cluster's own grid the
   // order's steps are short; in input order (random points) each would be
   // about the cluster's size.
   std::mt19937_64 rng(39);
   const auto check = [&](auto dimension) {
     constexpr int D = decltype(dimension)::value;
-    auto points = dewall::test::uniform<D>(3000, rng);
+    auto points = dewall::test::uniform<D>(6000, rng);
     for (auto& p : points)
       for (double& x : p.x) x *= 1e-6;
     dewall::kernel::Point_d<D> far_low, far_high;
@@ -221,7 +222,7 @@ TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its
     const auto path = [&](const std::vector<std::uint32_t>& order) {
       double length = 0;
       for (std::size_t k = 1; k < order.size(); ++k) {
-        if (order[k] >= 3000 || order[k - 1] >= 3000) continue;  // the far points
+        if (order[k] >= 6000 || order[k - 1] >= 6000) continue;  // the far points
         double squared = 0;
         for (int j = 0; j < D; ++j) squared += std::pow(points[order[k]].x[j] - points[order[k - 1]].x[j], 2);
         length += std::sqrt(squared);
@@ -239,6 +240,26 @@ TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its
   };
   check(std::integral_constant<int, 2>{});
   check(std::integral_constant<int, 3>{});
+  // Extents that overflow (points near ±1.7·10^308): each axis measured in
+  // half units still orders them (it was one cell: input order).
+  std::vector<std::array<double, 2>> huge(3000);
+  std::uniform_real_distribution<double> symmetric(-1, 1);
+  for (auto& p : huge) p = {1.7e308 * symmetric(rng), 1.7e308 * symmetric(rng)};
+  const auto huge_coords = [&](std::size_t i) -> const std::array<double, 2>& { return huge[i]; };
+  const auto huge_path = [&](const std::vector<std::uint32_t>& order) {
+    double length = 0;  // in units of 2^1000
+    for (std::size_t k = 1; k < order.size(); ++k)
+      length += std::hypot(huge[order[k]][0] * 0x1p-1000 - huge[order[k - 1]][0] * 0x1p-1000,
+                           huge[order[k]][1] * 0x1p-1000 - huge[order[k - 1]][1] * 0x1p-1000);
+    return length;
+  };
+  std::vector<std::uint32_t> input_order(huge.size());
+  for (std::size_t i = 0; i < huge.size(); ++i) input_order[i] = static_cast<std::uint32_t>(i);
+  const auto huge_order = dewall::detail::brio_order<2>(huge.size(), huge_coords);
+  auto sorted = huge_order;
+  std::sort(sorted.begin(), sorted.end());
+  CHECK(sorted == input_order);
+  CHECK(huge_path(huge_order) < huge_path(input_order) / 5);
 }
 
 TEST_CASE("incremental: the BRIO order of the distinct points is brio_order without the repeats", "[incremental]") {

@@ -387,13 +387,18 @@ int grid_bits(std::size_t count) {
 }
 
 /// The Hilbert indices of the cells of a grid of 2^bits cells a side over a
-/// box: a function of the point alone (equal points, equal indices).
+/// box: a function of the point alone (equal points, equal indices). An axis
+/// whose extent overflows (|x| near 2^1023) is measured in half units, so
+/// that it still orders the points (the halves are exact but for
+/// subnormals, which round alike for equal points).
 template <int D>
 class Hilbert_grid {
  public:
-  Hilbert_grid(const Box<D>& box, int bits) : lo_(box.lo), bits_(bits), cells_(static_cast<double>((std::uint32_t{1} << bits) - 1)) {
+  Hilbert_grid(const Box<D>& box, int bits) : bits_(bits), cells_(static_cast<double>((std::uint32_t{1} << bits) - 1)) {
     for (int j = 0; j < D; ++j) {
-      const double extent = box.hi[j] - box.lo[j];
+      unit_[j] = box.hi[j] - box.lo[j] < std::numeric_limits<double>::infinity() ? 1 : 0.5;
+      lo_[j] = box.lo[j] * unit_[j];
+      const double extent = box.hi[j] * unit_[j] - lo_[j];
       scale_[j] = extent > 0 && extent < std::numeric_limits<double>::infinity() ? cells_ / extent : 0;
     }
   }
@@ -403,8 +408,8 @@ class Hilbert_grid {
   std::uint64_t index(const std::array<double, D>& x, bool backwards) const {
     std::array<std::uint32_t, D> cell;
     for (int j = 0; j < D; ++j) {
-      double t = (x[j] - lo_[j]) * scale_[j];
-      t = t < 0 || !(t == t) ? 0 : t > cells_ ? cells_ : t;  // overflowing differences (|x| near 2^1023), tiny extents
+      double t = (x[j] * unit_[j] - lo_[j]) * scale_[j];
+      t = t < 0 || !(t == t) ? 0 : t > cells_ ? cells_ : t;  // rounding at the box's ends; tiny extents (scale ∞)
       cell[j] = static_cast<std::uint32_t>(t);
     }
     const std::uint64_t h = hilbert_index<D>(cell, bits_);
@@ -412,7 +417,7 @@ class Hilbert_grid {
   }
 
  private:
-  std::array<double, D> lo_, scale_;
+  std::array<double, D> unit_, lo_, scale_;
   int bits_;
   double cells_;
 };
@@ -422,6 +427,10 @@ class Hilbert_grid {
 template <bool Drop_repeats, int D, class Coords>
 std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D>& box, std::size_t smallest_round,
                                  std::uint64_t seed) {
+  // The grids' scales and the runs' grids in the default environment, not
+  // the caller's (rounding mode, denormals-are-zero): the order is a
+  // function of the coordinates alone (the review of 2026-11-29).
+  const kernel::Fp_environment_guard guard;
   int bits = grid_bits<D>(count);
   // In 2D, finer levels that fit in the same radix passes (and still in one
   // word with the index, when the key did) cost nothing: the table's index
@@ -466,44 +475,63 @@ std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D
     if (!Drop_repeats || leaf.size() == 1) order.insert(order.end(), leaf.begin(), leaf.end());
     else append_first_occurrences(leaf, coords, order);
   };
-  std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> keyed_at(max_refinements);
-  std::vector<std::vector<std::uint32_t>> sorted_at(max_refinements);
-  const auto refine = [&](const auto& self, std::span<const std::uint32_t> run, bool backwards, int depth) -> void {
-    if (run.size() < min_refined_run || depth == max_refinements) return emit(run);
-    const Box<D> run_box = bounding_box<D>(run.size(), [&](std::size_t k) -> decltype(auto) { return coords(run[k]); });
-    if (run_box.lo == run_box.hi) return emit(run);  // one point, repeated
-    const Hilbert_grid<D> run_grid(run_box, grid_bits<D>(run.size()));
-    auto& keyed = keyed_at[static_cast<std::size_t>(depth)];
-    keyed.resize(run.size());
-    for (std::size_t k = 0; k < run.size(); ++k) keyed[k] = {run_grid.index(coords(run[k]), backwards), run[k]};
-    // By (index, point index): stable, as the run's indices ascend.
-    if (keyed.size() > 4096) radix_sort(keyed, 0, D * run_grid.bits(), [](const auto& item) { return item.first; });
-    else std::sort(keyed.begin(), keyed.end());
-    auto& sorted = sorted_at[static_cast<std::size_t>(depth)];
-    sorted.resize(keyed.size());
-    for (std::size_t k = 0; k < keyed.size(); ++k) sorted[k] = keyed[k].second;
-    for (std::size_t c = 0; c < keyed.size();) {
-      std::size_t e = c + 1;
-      while (e < keyed.size() && keyed[e].first == keyed[c].first) ++e;
-      // (sorted at this depth is not touched by the deeper levels)
-      self(self, std::span<const std::uint32_t>(sorted).subspan(c, e - c), backwards, depth + 1);
-      c = e;
+  // In place, depth first from a stack of pending parts (the next on top):
+  // memory O(n) however deep (one buffer for each level had grown to 9×
+  // uniform points' on points spread log-uniformly over 1000 binades).
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> part_keys;
+  struct Part {
+    std::size_t begin, end;
+    int depth;
+  };
+  std::vector<Part> pending;
+  const auto refine = [&](std::span<std::uint32_t> run, bool backwards) {
+    pending.assign(1, Part{0, run.size(), 0});
+    while (!pending.empty()) {
+      const Part part = pending.back();
+      pending.pop_back();
+      const std::span<std::uint32_t> points = run.subspan(part.begin, part.end - part.begin);
+      if (points.size() < min_refined_run || part.depth == max_refinements) {
+        emit(points);
+        continue;
+      }
+      const Box<D> part_box = bounding_box<D>(points.size(), [&](std::size_t k) -> decltype(auto) { return coords(points[k]); });
+      if (part_box.lo == part_box.hi) {  // one point, repeated
+        emit(points);
+        continue;
+      }
+      const Hilbert_grid<D> part_grid(part_box, grid_bits<D>(points.size()));
+      part_keys.resize(points.size());
+      for (std::size_t k = 0; k < points.size(); ++k) part_keys[k] = {part_grid.index(coords(points[k]), backwards), points[k]};
+      // By (index, point index): stable, as the part's indices ascend.
+      if (part_keys.size() > 4096) radix_sort(part_keys, 0, D * part_grid.bits(), [](const auto& item) { return item.first; });
+      else std::sort(part_keys.begin(), part_keys.end());
+      // One cell: no axis splits the part (one point repeated; extents that
+      // round to nothing): deeper grids would give the same.
+      if (part_keys.front().first == part_keys.back().first) {
+        emit(points);
+        continue;
+      }
+      for (std::size_t k = 0; k < part_keys.size(); ++k) points[k] = part_keys[k].second;
+      for (std::size_t e = part_keys.size(); e > 0;) {  // its cells' parts, the last pushed first
+        std::size_t c = e - 1;
+        while (c > 0 && part_keys[c - 1].first == part_keys[e - 1].first) --c;
+        pending.push_back(Part{part.begin + c, part.begin + e, part.depth + 1});
+        e = c;
+      }
     }
   };
 
   // Keys in parallel, sorted by their key_bits bits from first_bit on, then
   // the indices read off run by run. TBB runs tasks in the environment its
-  // arena recorded, not the caller's: without the guard in each range (and
-  // here, for the runs' grids) the order would depend on it (the review of
-  // 2026-11-26).
+  // arena recorded, not the caller's: without the guard in each range the
+  // order would depend on it (the review of 2026-11-26).
   const auto sort_keys = [&](auto item_of, int first_bit, auto key_of, auto index_of) {
     std::vector<decltype(item_of(std::size_t{0}))> keyed(count);
     parallel_ranges(count, 1 << 14, [&](const tbb::blocked_range<std::size_t>& range) {
-      const kernel::Fp_environment_guard guard;
+      const kernel::Fp_environment_guard range_guard;
       for (std::size_t i = range.begin(); i < range.end(); ++i) keyed[i] = item_of(i);
     });
     radix_sort(keyed, first_bit, first_bit + key_bits, key_of);
-    const kernel::Fp_environment_guard guard;
     std::vector<std::uint32_t> run;
     const auto key = [&](std::size_t k) { return static_cast<std::uint64_t>(key_of(keyed[k])) >> first_bit; };
     for (std::size_t a = 0; a < count;) {  // runs [a, b) of equal keys
@@ -514,7 +542,8 @@ std::vector<std::uint32_t> order(std::size_t count, Coords&& coords, const Box<D
       } else {
         run.clear();
         for (std::size_t k = a; k < b; ++k) run.push_back(index_of(keyed[k]));
-        refine(refine, std::span<const std::uint32_t>(run), (key(a) >> round_shift) % 2 != 0, 0);
+        if (run.size() < min_refined_run) emit(run);
+        else refine(std::span<std::uint32_t>(run), (key(a) >> round_shift) % 2 != 0);
       }
       a = b;
     }
@@ -556,6 +585,7 @@ std::vector<std::uint32_t> brio_order_of_distinct(std::size_t count, Coords&& co
 /// The same, computing the box.
 template <int D, class Coords>
 std::vector<std::uint32_t> brio_order(std::size_t count, Coords&& coords) {
+  const kernel::Fp_environment_guard guard;  // the box too (subnormals under denormals-are-zero)
   return brio_order<D>(count, coords, bounding_box<D>(count, coords));
 }
 
