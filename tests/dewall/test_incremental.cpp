@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <span>
@@ -91,6 +92,30 @@ void check_against_cgal(const std::vector<dewall::kernel::Point_d<D>>& points, b
   CHECK(ours.size() == expected.size());
   CHECK(ours == expected);
   CHECK(incremental_delaunay_dropping_repeats<D>(points) == expected);
+}
+
+/// The length of the path through the points in `order` (coordinates times
+/// `unit`, so that points near 2^1023 give finite steps), leaving out the
+/// steps to or from an index of `end` or more.
+template <int D, class Coords>
+double order_path(const std::vector<std::uint32_t>& order, Coords&& coords, double unit = 1,
+                  std::size_t end = std::numeric_limits<std::size_t>::max()) {
+  double length = 0;
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    if (order[k] >= end || order[k - 1] >= end) continue;
+    double squared = 0;
+    for (std::size_t j = 0; j < static_cast<std::size_t>(D); ++j)
+      squared += std::pow(coords(order[k])[j] * unit - coords(order[k - 1])[j] * unit, 2);
+    length += std::sqrt(squared);
+  }
+  return length;
+}
+
+/// 0, 1, …, n − 1: the input order.
+std::vector<std::uint32_t> input_order(std::size_t n) {
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  return order;
 }
 
 template <int D>
@@ -219,23 +244,12 @@ TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its
     points.push_back(far_low);
     points.push_back(far_high);
     const auto coords = [&](std::size_t i) -> const std::array<double, D>& { return points[i].x; };
-    const auto path = [&](const std::vector<std::uint32_t>& order) {
-      double length = 0;
-      for (std::size_t k = 1; k < order.size(); ++k) {
-        if (order[k] >= 6000 || order[k - 1] >= 6000) continue;  // the far points
-        double squared = 0;
-        for (int j = 0; j < D; ++j) squared += std::pow(points[order[k]].x[j] - points[order[k - 1]].x[j], 2);
-        length += std::sqrt(squared);
-      }
-      return length;
-    };
-    std::vector<std::uint32_t> input_order(points.size());
-    for (std::size_t i = 0; i < points.size(); ++i) input_order[i] = static_cast<std::uint32_t>(i);
     const auto order = dewall::detail::brio_order<D>(points.size(), coords);
     auto sorted = order;
     std::sort(sorted.begin(), sorted.end());
-    CHECK(sorted == input_order);
-    CHECK(path(order) < path(input_order) / 5);
+    CHECK(sorted == input_order(points.size()));
+    // (the steps to and from the far points, 6000 and 6001, left out)
+    CHECK(order_path<D>(order, coords, 1, 6000) < order_path<D>(input_order(points.size()), coords, 1, 6000) / 5);
     check_against_cgal<D>(points);
   };
   check(std::integral_constant<int, 2>{});
@@ -246,20 +260,11 @@ TEST_CASE("incremental: a cluster sharing one grid cell goes along a grid of its
   std::uniform_real_distribution<double> symmetric(-1, 1);
   for (auto& p : huge) p = {1.7e308 * symmetric(rng), 1.7e308 * symmetric(rng)};
   const auto huge_coords = [&](std::size_t i) -> const std::array<double, 2>& { return huge[i]; };
-  const auto huge_path = [&](const std::vector<std::uint32_t>& order) {
-    double length = 0;  // in units of 2^1000
-    for (std::size_t k = 1; k < order.size(); ++k)
-      length += std::hypot(huge[order[k]][0] * 0x1p-1000 - huge[order[k - 1]][0] * 0x1p-1000,
-                           huge[order[k]][1] * 0x1p-1000 - huge[order[k - 1]][1] * 0x1p-1000);
-    return length;
-  };
-  std::vector<std::uint32_t> input_order(huge.size());
-  for (std::size_t i = 0; i < huge.size(); ++i) input_order[i] = static_cast<std::uint32_t>(i);
   const auto huge_order = dewall::detail::brio_order<2>(huge.size(), huge_coords);
   auto sorted = huge_order;
   std::sort(sorted.begin(), sorted.end());
-  CHECK(sorted == input_order);
-  CHECK(huge_path(huge_order) < huge_path(input_order) / 5);
+  CHECK(sorted == input_order(huge.size()));
+  CHECK(order_path<2>(huge_order, huge_coords, 0x1p-1000) < order_path<2>(input_order(huge.size()), huge_coords, 0x1p-1000) / 5);
 }
 
 TEST_CASE("incremental: the BRIO order of the distinct points is brio_order without the repeats", "[incremental]") {
