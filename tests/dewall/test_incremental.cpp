@@ -460,6 +460,30 @@ TEST_CASE("incremental: the ridge table glues stars as the directed table does",
   check(dewall::test::uniform<3>(300, rng));
 }
 
+TEST_CASE("incremental: ridge keys that collide glue the same stars", "[incremental]") {
+  // Keys cut to 3 bits match across unrelated ridges of a star: the ridge
+  // check (same_ridge) alone must keep the gluing right, in every dimension.
+  std::mt19937_64 rng(37);
+  auto check = [](const auto& points) {
+    constexpr int D = std::remove_cvref_t<decltype(points[0])>::dimension;
+    Incremental_delaunay<D> plain, colliding;
+    plain.ridge_table_only = colliding.ridge_table_only = true;
+    colliding.colliding_ridge_keys = true;
+    colliding.check_each_insertion = true;
+    REQUIRE(plain.build(points));
+    REQUIRE(colliding.build(points));
+    REQUIRE(colliding.slots() == plain.slots());
+    for (std::size_t c = 0; c < plain.slots(); ++c) {
+      CHECK(colliding.cell(c) == plain.cell(c));
+      for (int i = 0; i <= D; ++i) CHECK(colliding.neighbor(c, i) == plain.neighbor(c, i));
+    }
+  };
+  check(dewall::test::uniform<2>(300, rng));
+  check(dewall::test::uniform<3>(200, rng));
+  check(dewall::test::uniform<4>(100, rng));
+  check(dewall::test::uniform<5>(40, rng));
+}
+
 TEST_CASE("incremental: CGAL's cells in 2D and 3D", "[incremental]") {
   std::mt19937_64 rng(34);
   check_families<2>(1000, rng);
