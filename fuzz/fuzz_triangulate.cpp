@@ -238,7 +238,8 @@ void run(Byte_source& in) {
   // the library uses from 2^16 points on), every point after the first
   // 256th (the BRIO sample's own sample) in zones: CGAL's cells, and on two threads the same cells in the same
   // slots as on one; zones that run out of slots or give up early, or try
-  // the points beside the cut too, by the input's size.
+  // the points beside the cut too, or glue every star through the ridge table
+  // with colliding keys (same_ridge alone tells ridges apart), by the input's size.
   std::vector<Point_d<D>> distinct;
   std::vector<std::uint32_t> input_of;
   for (std::size_t i = 0; i < points.size(); ++i)
@@ -250,6 +251,7 @@ void run(Byte_source& in) {
     dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
     dt.zone_probe = points.size() % 3 ? 2048 : 4;
     dt.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
+    dt.ridge_table_only = dt.colliding_ridge_keys = points.size() % 7 == 0;
     tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
   }
   std::vector<dewall::Simplex<D>> cells;
