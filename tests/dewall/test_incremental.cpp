@@ -462,16 +462,20 @@ TEST_CASE("incremental: the ridge table glues stars as the directed table does",
 
 TEST_CASE("incremental: ridge keys that collide glue the same stars", "[incremental]") {
   // Keys cut to 3 bits match across unrelated ridges of a star: the ridge
-  // check (same_ridge) alone must keep the gluing right, in every dimension.
+  // check (same_ridge) alone must keep the gluing right, in every dimension,
+  // serially and in zones (whose stars use each zone's own table).
   std::mt19937_64 rng(37);
-  auto check = [](const auto& points) {
+  auto check = [](const auto& points, bool zoned = false) {
     constexpr int D = std::remove_cvref_t<decltype(points[0])>::dimension;
     Incremental_delaunay<D> plain, colliding;
     plain.ridge_table_only = colliding.ridge_table_only = true;
+    if (zoned) plain.zoned_insertion_threshold = colliding.zoned_insertion_threshold = 64;
     colliding.colliding_ridge_keys = true;
     colliding.check_each_insertion = true;
     REQUIRE(plain.build(points));
     REQUIRE(colliding.build(points));
+    INFO("D = " << D << " rounds " << colliding.statistics().zone_rounds);
+    if (zoned) CHECK(colliding.statistics().zoned_points > 0);
     REQUIRE(colliding.slots() == plain.slots());
     for (std::size_t c = 0; c < plain.slots(); ++c) {
       CHECK(colliding.cell(c) == plain.cell(c));
@@ -482,6 +486,8 @@ TEST_CASE("incremental: ridge keys that collide glue the same stars", "[incremen
   check(dewall::test::uniform<3>(200, rng));
   check(dewall::test::uniform<4>(100, rng));
   check(dewall::test::uniform<5>(40, rng));
+  check(dewall::test::uniform<2>(3000, rng), true);
+  check(dewall::test::uniform<3>(1500, rng), true);
 }
 
 TEST_CASE("incremental: CGAL's cells in 2D and 3D", "[incremental]") {

@@ -390,8 +390,9 @@ class Incremental_delaunay {
 #endif
   }
 
-  /// Checks the data structure (tests): neighbours are
-  /// mutual and share D vertices, finite cells are positively oriented.
+  /// Checks the data structure (tests): neighbours are other cells, mutual
+  /// (each refers back to the facet that refers to it) and share exactly the
+  /// D vertices of that facet; finite cells are positively oriented.
   bool is_valid() const {
     for (std::size_t c = 0; c < slots(); ++c) {
       if (is_free(c)) continue;
@@ -399,9 +400,11 @@ class Incremental_delaunay {
         const std::uint32_t ref = cells_[c].n[i];
         const std::size_t n = ref >> facet_bits;
         const int j = static_cast<int>(ref & facet_mask);
-        if (n >= slots() || is_free(n) || (cells_[n].n[j] >> facet_bits) != c) return false;
+        if (n >= slots() || n == c || is_free(n) || cells_[n].n[j] != reference(c, i)) return false;
+        const auto holds = [](const Cell& cell, Index x) { return std::find(cell.begin(), cell.end(), x) != cell.end(); };
         for (int k = 0; k <= D; ++k)
-          if (k != i && std::find(cells_[n].v.begin(), cells_[n].v.end(), cells_[c].v[k]) == cells_[n].v.end()) return false;
+          if (k != i && !holds(cells_[n].v, cells_[c].v[k])) return false;
+        if (holds(cells_[c].v, cells_[n].v[j])) return false;
       }
       if (!is_infinite(c) && orientation(c, -1, nullptr) != kernel::POSITIVE) return false;
     }
@@ -1326,7 +1329,9 @@ class Incremental_delaunay {
   /// point) has the ridge of `cell` (a new cell's vertices, the new point at
   /// `apex`) without vertex `i`: whether each of that ridge's D − 1 vertices is
   /// among the candidate's other than at its facet. (Both cells hold the new
-  /// point, so the candidate's facet then has the same D vertices.)
+  /// point, and only facets through it are parked — the candidate's facet is
+  /// never opposite the new point — so the candidate's facet then has the
+  /// same D vertices.)
   bool same_ridge(std::uint32_t candidate, const Cell& cell, int apex, int i) const {
     const Cell& other = cells_[candidate >> facet_bits].v;
     const int facet = static_cast<int>(candidate & facet_mask);
