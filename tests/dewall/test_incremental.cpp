@@ -131,6 +131,21 @@ void check_families(std::size_t n, std::mt19937_64& rng) {
   check_against_cgal<D>(dewall::test::scaled<D>(dewall::test::lattice_samples<D>(n, 4, rng), 0x1p600, 0x1p601));
 }
 
+/// Whether a and b hold the same cells with the same neighbours in the same
+/// slots, and the same slots free (the output order is the slots').
+template <int D>
+bool same_slots(const Incremental_delaunay<D>& a, const Incremental_delaunay<D>& b) {
+  if (a.slots() != b.slots()) return false;
+  for (std::size_t c = 0; c < a.slots(); ++c) {
+    if (a.is_free(c) != b.is_free(c)) return false;
+    if (a.is_free(c)) continue;
+    if (a.cell(c) != b.cell(c)) return false;
+    for (int i = 0; i <= D; ++i)
+      if (a.neighbor(c, i) != b.neighbor(c, i)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring cells", "[incremental]") {
@@ -450,11 +465,7 @@ TEST_CASE("incremental: the ridge table glues stars as the directed table does",
     REQUIRE(ridges.build(points));
     CHECK(ridges.statistics().ridge_table_stars == points.size() - (D + 1));
     CHECK(directed.statistics().ridge_table_stars == 0);
-    REQUIRE(ridges.slots() == directed.slots());
-    for (std::size_t c = 0; c < directed.slots(); ++c) {
-      CHECK(ridges.cell(c) == directed.cell(c));
-      for (int i = 0; i <= D; ++i) CHECK(ridges.neighbor(c, i) == directed.neighbor(c, i));
-    }
+    CHECK(same_slots(ridges, directed));
   };
   check(dewall::test::uniform<2>(400, rng));
   check(dewall::test::uniform<3>(300, rng));
@@ -476,11 +487,7 @@ TEST_CASE("incremental: ridge keys that collide glue the same stars", "[incremen
     REQUIRE(colliding.build(points));
     INFO("D = " << D << " rounds " << colliding.statistics().zone_rounds);
     if (zoned) CHECK(colliding.statistics().zoned_points > 0);
-    REQUIRE(colliding.slots() == plain.slots());
-    for (std::size_t c = 0; c < plain.slots(); ++c) {
-      CHECK(colliding.cell(c) == plain.cell(c));
-      for (int i = 0; i <= D; ++i) CHECK(colliding.neighbor(c, i) == plain.neighbor(c, i));
-    }
+    CHECK(same_slots(colliding, plain));
   };
   check(dewall::test::uniform<2>(300, rng));
   check(dewall::test::uniform<3>(200, rng));
@@ -729,13 +736,7 @@ Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>
   CHECK(cells == dewall::test::cgal_delaunay<D>(points));
   CHECK(one.finite_cells() == cells.size());
   CHECK(two.is_valid());
-  REQUIRE(one.slots() == two.slots());
-  bool same_slots = true;  // cells and neighbours
-  for (std::size_t c = 0; c < one.slots(); ++c) {
-    same_slots = same_slots && one.is_free(c) == two.is_free(c) && (one.is_free(c) || one.cell(c) == two.cell(c));
-    for (int i = 0; i <= D && same_slots && !one.is_free(c); ++i) same_slots = one.neighbor(c, i) == two.neighbor(c, i);
-  }
-  CHECK(same_slots);
+  CHECK(same_slots(one, two));
   CHECK(one.finite_cells() == two.finite_cells());
   CHECK(one.statistics().zoned_points == two.statistics().zoned_points);
   CHECK(one.statistics().zone_rounds == two.statistics().zone_rounds);
