@@ -363,30 +363,32 @@ class Incremental_delaunay {
   /// search's marks now (above 2D; in 2D they are in the cells). Afterwards
   /// only slots(), is_free(), is_infinite(), holds_finite_cell(), cell(),
   /// input_index() and finite_cells() may be called, and after
-  /// release_slots_before(s) on no slot below s.
+  /// release_slots(first, last) on none of those slots.
   void finish_for_reading() {
     std::vector<Point>().swap(points_);
     std::vector<std::uint8_t>().swap(mark_);
   }
-  /// Slots below `slot` are not read again: the whole pages they fill go
-  /// back to the system (madvise MADV_DONTNEED; they would read as zeros).
-  /// So the output, growing as the cells are read, does not add to their
-  /// peak: at 10^6 points 218 MB of cells and 108 MB of collected simplices.
+  /// Slots first … last − 1 are not read again: the whole pages within
+  /// them go back to the system (madvise MADV_DONTNEED; they would read as
+  /// zeros). So the output, growing as the cells are read, does not add to
+  /// their peak: at 10^6 points 218 MB of cells and 108 MB of collected
+  /// simplices. A page shared with slots outside the range stays (the
+  /// caller may still be reading those: the hand-over releases each block
+  /// from the task that read it, in parallel); it goes with the object.
   /// Nothing below 8 MB of cells (then the output is small too): the pages
   /// given back there were faulted in again by the next construction of the
   /// process (10^4 points on a circle, built 100 times: page faults and
   /// madvise 5 % of the time). Without <sys/mman.h>, nothing.
-  void release_slots_before(std::size_t slot) {
+  void release_slots(std::size_t first, std::size_t last) {
 #ifdef DEWALL_CAN_RELEASE_PAGES
     if (cells_.size() * sizeof(Record) < (std::size_t{8} << 20)) return;
     static const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
     const auto base = reinterpret_cast<std::uintptr_t>(cells_.data());
-    const std::uintptr_t begin = std::max((base + page - 1) / page * page, released_until_);
-    const std::uintptr_t end = (base + std::min(slot, cells_.size()) * sizeof(Record)) / page * page;
-    if (end <= begin) return;
-    if (madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED) == 0) released_until_ = end;
+    const std::uintptr_t begin = (base + first * sizeof(Record) + page - 1) / page * page;
+    const std::uintptr_t end = (base + std::min(last, cells_.size()) * sizeof(Record)) / page * page;
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
 #else
-    (void)slot;
+    (void)first, (void)last;
 #endif
   }
 
