@@ -52,11 +52,13 @@ struct Incremental_graph {
 
 /// Passes the finite cells to `output` in slot order (the same for any number
 /// of threads) and returns their number. Blocks of slots are converted to the
-/// caller's ids in parallel (each cell's reads are cache misses), their pages
-/// released by the same task, and passed on in order by one thread at a time:
-/// at 10^6 points the serial loop it replaces took 0.09 s of a two-thread
-/// run's 1.23 s. Released in the serial stage, the pages cost 0.02 s of its
-/// 0.07 s: the tool's hand-over on two threads, 0.079–0.092 → 0.061–0.067 s
+/// caller's ids in parallel (each cell's reads are cache misses), the pages
+/// wholly inside each block released by the task that converted it (a page
+/// shared with the next block stays until the object goes), and passed on in
+/// order by one thread at a time: at 10^6 points the serial loop it replaces
+/// took 0.09 s of a two-thread run's 1.23 s. Released in the serial stage,
+/// the pages cost 0.02 s of that stage's 0.07 s: the tool's hand-over on two
+/// threads, 0.079–0.092 → 0.061–0.067 s
 /// (one thread 0.12–0.13 s either way). What stays serial is the output's
 /// own copy, 0.05 s (mostly the first touches of its fresh pages).
 template <int D>

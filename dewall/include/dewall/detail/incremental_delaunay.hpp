@@ -369,8 +369,8 @@ class Incremental_delaunay {
     std::vector<std::uint8_t>().swap(mark_);
   }
   /// Slots first … last − 1 are not read again: the whole pages within
-  /// them go back to the system (madvise MADV_DONTNEED; they would read as
-  /// zeros). So the output, growing as the cells are read, does not add to
+  /// them go back to the system (madvise MADV_DONTNEED; on Linux they would
+  /// read as zeros). So the output, growing as the cells are read, does not add to
   /// their peak: at 10^6 points 218 MB of cells and 108 MB of collected
   /// simplices. A page shared with slots outside the range stays (the
   /// caller may still be reading those: the hand-over releases each block
@@ -1444,7 +1444,6 @@ class Incremental_delaunay {
     if constexpr (marks_in_cells) return cells_[c].mark;
     else return mark_[c];
   }
-  std::uintptr_t released_until_ = 0;  // release_slots_before: the address below which pages went back
   std::size_t finite_cells_ = 0;
 
   // glue_star_directed: the boundary vertices' numbers, the facets' directed
