@@ -58,9 +58,9 @@ struct Incremental_graph {
 /// order by one thread at a time: at 10^6 points the serial loop it replaces
 /// took 0.09 s of a two-thread run's 1.23 s. Released in the serial stage,
 /// the pages cost 0.02 s of that stage's 0.07 s: the tool's hand-over on two
-/// threads, 0.079–0.092 → 0.061–0.067 s
-/// (one thread 0.12–0.13 s either way). What stays serial is the output's
-/// own copy, 0.05 s (mostly the first touches of its fresh pages).
+/// threads, 0.079–0.092 → 0.061–0.067 s (one thread 0.12–0.13 s either way).
+/// What stays serial is the output's own copy, 0.05 s (mostly the first
+/// touches of its fresh pages).
 template <int D>
 std::size_t hand_over_cells(Incremental_delaunay<D>& dt, Simplex_output<D>& output) {
   // 1 MB of 3D cells a block. A block's buffer is reused `in_flight` blocks

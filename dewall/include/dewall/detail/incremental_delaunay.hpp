@@ -370,11 +370,11 @@ class Incremental_delaunay {
   }
   /// Slots first … last − 1 are not read again: the whole pages within
   /// them go back to the system (madvise MADV_DONTNEED; on Linux they would
-  /// read as zeros). So the output, growing as the cells are read, does not add to
-  /// their peak: at 10^6 points 218 MB of cells and 108 MB of collected
-  /// simplices. A page shared with slots outside the range stays (the
-  /// caller may still be reading those: the hand-over releases each block
-  /// from the task that read it, in parallel); it goes with the object.
+  /// read as zeros). So the output, growing as the cells are read, does not
+  /// add to their peak: at 10^6 points 218 MB of cells and 108 MB of
+  /// collected simplices. A page shared with slots outside the range stays
+  /// (the caller may still be reading those: the hand-over releases each
+  /// block from the task that read it, in parallel); it goes with the object.
   /// Nothing below 8 MB of cells (then the output is small too): the pages
   /// given back there were faulted in again by the next construction of the
   /// process (10^4 points on a circle, built 100 times: page faults and
