@@ -119,7 +119,8 @@ std::vector<kernel::Point_d<D>> kernel_points(const io::Point_table& table) {
 certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
                             const certify::Options& options);
 
-/// Prints the paper's Table 1 counters and build_s=SECONDS.
+/// Prints the counts, the engine, build_s=SECONDS, which construction built
+/// how many simplices, and the paper's Table 1 counters when walls ran.
 void print_stats(std::FILE* out, const Run& run);
 
 /// A subcommand: `run` returns the exit status (argv[1] is the command name);

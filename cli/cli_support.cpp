@@ -84,14 +84,29 @@ Run triangulate_any(io::Point_table& table, const Options& options, const Simple
 
 void print_stats(std::FILE* out, const Run& run) {
   const auto& s = run.stats;
-  std::fprintf(out,
-               "points=%zu distinct=%zu simplices=%zu first_wall_simplices=%zu recursion_depth=%zu\n"
-               "tree_leaves=%zu mean_nodes_per_simplex=%.2f candidates_per_search=%.2f\n"
-               "engine=%s region_simplices=%zu searches_before_handover=%zu build_s=%.6f\n",
-               s.input_points, s.distinct_points, s.simplices, s.first_wall_simplices, s.recursion_depth,
-               s.tree_leaves, s.mean_nodes_per_simplex(),
-               s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0,
-               engine_name(s.engine), s.region_simplices, s.searches_before_handover, run.seconds);
+  std::fprintf(out, "points=%zu distinct=%zu simplices=%zu engine=%s build_s=%.6f\n", s.input_points, s.distinct_points,
+               s.simplices, engine_name(s.engine), run.seconds);
+  // Which construction built how many simplices, then the counters of the
+  // walls (the paper's Table 1) when walls ran: zeros would say nothing.
+  const bool walls = s.engine == Engine::dewall || s.engine == Engine::hybrid;
+  const std::size_t by_walls = walls ? s.simplices - s.region_simplices : 0;
+  if (s.engine == Engine::dewall)
+    std::fprintf(out, "built: walls %zu simplices\n", by_walls);
+  else if (s.engine == Engine::hybrid)
+    std::fprintf(out, "built: walls %zu simplices, regions (incremental construction) %zu\n", by_walls,
+                 s.region_simplices);
+  else if (s.searches_before_handover)
+    std::fprintf(out, "built: %s incremental construction %zu simplices (auto handed over after %zu wall searches)\n",
+                 s.engine == Engine::cgal ? "CGAL's" : "dewall's", s.simplices, s.searches_before_handover);
+  else
+    std::fprintf(out, "built: %s incremental construction %zu simplices (no walls)\n",
+                 s.engine == Engine::cgal ? "CGAL's" : "dewall's", s.simplices);
+  if (walls)
+    std::fprintf(out,
+                 "walls: first_wall_simplices=%zu recursion_depth=%zu tree_leaves=%zu mean_nodes_per_simplex=%.2f "
+                 "candidates_per_search=%.2f\n",
+                 s.first_wall_simplices, s.recursion_depth, s.tree_leaves, s.mean_nodes_per_simplex(),
+                 s.simplex_searches ? double(s.candidates_tested) / double(s.simplex_searches) : 0.0);
   // The kernel's per-stage counters, in a build configured with
   // -DDEWALL_PREDICATE_STATS=ON (they cost a few per cent, so releases leave
   // them out): which stage decided each evaluation so far in this process.

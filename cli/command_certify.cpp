@@ -28,8 +28,23 @@ int command_certify(int argc, char** argv) {
       });
   if (files.size() != 2) throw Usage_error("certify needs POINTS and SIMPLICES ('-' = standard input for one of them)");
   if (files[0] == "-" && files[1] == "-") throw Usage_error("only one of POINTS and SIMPLICES can be standard input");
-  const auto points = io::read_points_file(files[0]);
-  const auto list = io::read_simplices_file(files[1], points.dimension, points.first_index);
+  // Each file holding what the other should: say so, not only what is wrong with one.
+  const auto swapped = [&](const io::Parse_error& e) {
+    return io::Parse_error(std::string(e.what()) + " (the arguments look swapped: dewall certify POINTS SIMPLICES)");
+  };
+  io::Point_table points;
+  io::Simplex_list list;
+  try {
+    points = io::read_points_file(files[0]);
+    list = io::read_simplices_file(files[1], points.dimension, points.first_index);
+  } catch (const io::Not_points_error& e) {
+    throw swapped(e);
+  } catch (const io::Not_simplices_error& e) {
+    throw swapped(e);
+  }
+  if (list.table.size() == 0)
+    throw io::Parse_error(input_name(files[1]) + ": no simplices (a triangulation of " + std::to_string(points.size()) +
+                          " points has at least one)");
   const std::string sname = input_name(files[1]), pname = input_name(files[0]);
 
   const auto start = std::chrono::steady_clock::now();
@@ -96,6 +111,9 @@ int command_certify(int argc, char** argv) {
   } else if (report.delaunay) {
     std::printf("delaunay not-canonical: %s is a Delaunay triangulation of %s but not the canonical one (%s)\n",
                 sname.c_str(), pname.c_str(), what.c_str());
+  } else if (options.all) {  // the list below starts with the first violation: not printed twice
+    std::printf("not delaunay: %s is not a Delaunay triangulation of %s (%zu violations):\n", sname.c_str(),
+                pname.c_str(), report.violations.size());
   } else {
     std::printf("not delaunay: %s is not a Delaunay triangulation of %s: %s\n", sname.c_str(), pname.c_str(),
                 certify::describe(shifted(*report.first_fatal()), name).c_str());
@@ -114,9 +132,10 @@ int command_certify(int argc, char** argv) {
 const bool registered = register_command({"certify", command_certify,
     "  certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N]\n"
     "      Decides with exact predicates whether SIMPLICES (one simplex per line,\n"
-    "      zero-based indices, any order; Qhull's 'qdelaunay Qt i' output; TetGen\n"
-    "      .ele; or the binary .dwsx format) is a Delaunay triangulation of POINTS, and whether it is\n"
-    "      the canonical one (CGAL's and dewall's). Exit 0 when it is Delaunay\n"
+    "      zero-based indices, any order, each simplex in either orientation;\n"
+    "      Qhull's 'qdelaunay Qt i' output; TetGen .ele; the binary .dwsx format;\n"
+    "      or a VTK file's cells) is a Delaunay triangulation of POINTS, and whether\n"
+    "      it is the canonical one (CGAL's and dewall's). Exit 0 when it is Delaunay\n"
     "      (with --canonical: only when also canonical), 1 with the first\n"
     "      violation and its witness otherwise, 2 for unreadable input.\n"
     "      --all lists every violation; --json prints a machine-readable report.\n"

@@ -1,4 +1,4 @@
-// dewall draw POINTS [SIMPLICES] [-o picture.svg] [--walls] [--width PX] [--quiet]
+// dewall draw POINTS [SIMPLICES] [-o picture.svg] [--walls] [--width PX] [--quiet|-q]
 //
 // An SVG picture of a 2D triangulation. With --walls each triangle is coloured
 // by the recursion level of the wall that built it, as in the paper's Figures
@@ -18,6 +18,7 @@
 
 #include "cli.hpp"
 #include "dewall/dewall.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -149,7 +150,10 @@ int command_draw(int argc, char** argv) {
   if (points_path == "-" && simplices_path == "-" && !walls)
     throw Usage_error("POINTS and SIMPLICES cannot both be standard input");
 
-  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
+  // A target that cannot be written, or is an input, fails now, not after the work.
+  io::check_output_is_not_input(output, points_path);
+  if (!simplices_path.empty()) io::check_output_is_not_input(output, simplices_path);
+  io::Output_file::probe(output);
   io::Progress progress(!quiet && io::stderr_is_terminal());
   const auto table = io::read_points_file(points_path, &progress);
   if (table.dimension != 2)
@@ -207,7 +211,7 @@ int command_draw(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"draw", command_draw,
-    "  draw POINTS [SIMPLICES] [-o PICTURE.svg] [--walls] [--width PX] [--quiet]\n"
+    "  draw POINTS [SIMPLICES] [-o PICTURE.svg] [--walls] [--width PX] [--quiet|-q]\n"
     "      SVG picture of a 2D triangulation (default: standard output). SIMPLICES is\n"
     "      a simplex list as certify reads it ('-' = standard input). --walls colours each triangle\n"
     "      by the recursion level of the DeWall wall that built it (0: the first\n"

@@ -1,4 +1,4 @@
-// dewall generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]
+// dewall generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet|-q]
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/progress.hpp"
@@ -62,7 +63,8 @@ int command_generate(int argc, char** argv) {
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
-  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
+  io::check_points_output_name(output);  // a name that says another format fails now, not after the work
+  io::Output_file::probe(output);
   if (!seeded) {
     // Two draws: random_device yields 32 bits on common platforms.
     std::random_device device;
@@ -93,7 +95,7 @@ int command_generate(int argc, char** argv) {
 
 namespace {
 const bool registered = register_command({"generate", command_generate,
-    "  generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet]\n"
+    "  generate KIND N [--dim D] [--seed S] [--noise X] [--planes P] [-o FILE] [--quiet|-q]\n"
     "      Writes a point set of E^D (D = 2 to 6, default 3): KIND is uniform (unit\n"
     "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
     "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
@@ -107,7 +109,9 @@ const bool registered = register_command({"generate", command_generate,
     "      (default about log2(N) / 2, 2 to 8).\n"
     "      The seed (default: random) is printed on stderr. FILE:\n"
     "      plain text (default: standard output), binary when it ends in .dwpt,\n"
-    "      VTK when it ends in .vtk (2D and 3D).\n"});
+    "      TetGen's format when it ends in .node, VTK when it ends in .vtk (2D and\n"
+    "      3D); extensions in any case. A name that says a simplex format (.dwsx,\n"
+    "      .ele) or one dewall does not write (.ply, .msh, ...) is refused.\n"});
 }  // namespace
 
 }  // namespace dewall::cli

@@ -1,5 +1,5 @@
 // dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N] [--stream]
-//                    [--region-points N] [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]
+//                    [--region-points N] [--incremental-engine auto|incremental|cgal] [--stats] [--quiet|-q]
 #include <cstdio>
 #include <optional>
 #include <string>
@@ -7,6 +7,7 @@
 #include "cli.hpp"
 #include "dewall/error.hpp"
 #include "dewall/options.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -45,6 +46,13 @@ int command_triangulate(int argc, char** argv) {
     options.incremental_engine = *e;
   else
     throw Usage_error("unknown incremental engine " + io::quoted(incremental_engine) + " (auto, incremental or cgal)");
+  // An option the chosen engine would ignore is a mistake to point out, not to pass over.
+  const bool regions = options.engine == Engine::automatic || options.engine == Engine::hybrid;
+  if (region_points && !regions)
+    throw Usage_error(std::string("--region-points applies to --engine auto and hybrid, not ") + engine_name(options.engine));
+  if (options.incremental_engine != Engine::automatic && !regions)
+    throw Usage_error(std::string("--incremental-engine applies to --engine auto and hybrid, not ") +
+                      engine_name(options.engine) + (options.engine == Engine::dewall ? "" : " (itself an incremental construction)"));
   if (threads) options.threads = parse_thread_count(*threads);
   if (region_points) {
     const long n = parse_long(*region_points, "--region-points value");
@@ -55,7 +63,10 @@ int command_triangulate(int argc, char** argv) {
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
                       " (.ele and .vtk files start with the count of simplices)");
   options.stream = stream;
-  io::Output_file::probe(output);  // a target that cannot be written fails now, not after the work
+  // Outputs that would lose data or could not be read back fail now, not after the work.
+  io::check_simplices_output_name(output);
+  io::check_output_is_not_input(output, input);
+  io::Output_file::probe(output);
   io::Progress progress(!quiet && io::stderr_is_terminal());
   auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
@@ -94,7 +105,7 @@ std::string count(std::size_t n) { return std::to_string(n); }
 const std::string usage =
     "  triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N]\n"
     "              [--stream] [--region-points N]\n"
-    "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet]\n"
+    "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet|-q]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
     "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
@@ -102,7 +113,9 @@ const std::string usage =
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, the\n"
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"
-    "      legacy VTK for ParaView when it ends in .vtk (2D and 3D).\n"
+    "      legacy VTK for ParaView when it ends in .vtk (2D and 3D); extensions in\n"
+    "      any case. A name that says a point format (.dwpt, .node) or one dewall\n"
+    "      does not write (.ply, .msh, ...) is refused, and so is OUTPUT = INPUT.\n"
     "      --engine: the construction; the simplices are the same with each.\n"
     "      hybrid builds DeWall's walls down to regions of n/4 points (" + count(smallest_default_region) + " to\n"
     "      " + count(largest_default_region) + ") and triangulates each region with an incremental construction\n"
@@ -136,10 +149,11 @@ const std::string usage =
     "      of what auto hands over: incremental (dewall's own), cgal, or auto\n"
     "      (default: the faster of the two for the job, measured; the same\n"
     "      simplices with each).\n"
-    "      --stats prints the paper's Table 1 counters, the engine that built the\n"
-    "      output and build_s=SECONDS on stderr.\n"
+    "      --stats prints on stderr the engine that built the output, how many\n"
+    "      simplices each construction built, build_s=SECONDS and, when walls ran,\n"
+    "      the paper's Table 1 counters.\n"
     "      A progress line is shown on stderr for long work when it is a terminal;\n"
-    "      --quiet turns it off.\n";
+    "      --quiet (-q) turns it off. Options may also be written --name=VALUE.\n";
 const bool registered = register_command({"triangulate", command_triangulate, usage.c_str()});
 }  // namespace
 

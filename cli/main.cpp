@@ -9,6 +9,7 @@
 #include <cstring>
 #include <new>
 #include <string>
+#include <vector>
 
 #include "cli.hpp"
 #include "dewall/io/output_file.hpp"
@@ -100,6 +101,26 @@ int main(int argc, char** argv) {
   // like any write error (the old output kept), instead of SIGXFSZ killing
   // the process without a word and leaving the temporary behind.
   std::signal(SIGXFSZ, SIG_IGN);
+  // GNU's --name=VALUE is --name VALUE (before "--", which ends the options):
+  // split here once, so that no command parses two forms.
+  std::vector<std::string> words;
+  bool options_ended = false;
+  for (int i = 0; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto equals = a.find('=');
+    options_ended = options_ended || a == "--";
+    if (i >= 2 && !options_ended && a.rfind("--", 0) == 0 && equals != std::string::npos && equals > 2) {
+      words.push_back(a.substr(0, equals));
+      words.push_back(a.substr(equals + 1));
+    } else {
+      words.push_back(a);
+    }
+  }
+  std::vector<char*> args;
+  for (auto& w : words) args.push_back(w.data());
+  args.push_back(nullptr);
+  argc = static_cast<int>(words.size());
+  argv = args.data();
   try {
     return run(argc, argv);
   } catch (const dewall::cli::Usage_error& e) {

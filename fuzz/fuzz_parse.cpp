@@ -4,7 +4,8 @@
 //
 // Input: [reader] [dimension, for simplex lists] then the file's bytes.
 // Readers: plain text / rbox (io::read_points), TetGen .node (io::read_node),
-// binary .dwpt (io::read_binary_points), legacy VTK (io::read_vtk_points),
+// binary .dwpt (io::read_binary_points), legacy VTK (io::read_vtk_points and,
+// on the same bytes, io::read_vtk_simplices),
 // simplex lists: plain or Qhull (io::read_simplices) and TetGen .ele
 // (io::read_ele). The readers added after this harness are compiled in when
 // their headers exist.
@@ -123,9 +124,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
 #endif
 #ifdef DEWALL_FUZZ_VTK
-      case vtk:
+      case vtk: {
+        // The same bytes also as a triangulation: its CELLS as simplices of `dimension`.
+        std::istringstream cells(bytes, std::ios::binary);
+        try {
+          const auto t = dewall::io::read_vtk_simplices(cells, "fuzz.vtk", dimension);
+          DEWALL_FUZZ_CHECK(t.vertices_per_simplex == dimension + 1);
+          DEWALL_FUZZ_CHECK(t.indices.size() == t.size() * static_cast<std::size_t>(dimension + 1));
+        } catch (const Parse_error&) {
+        }
         check_table(dewall::io::read_vtk_points(in, "fuzz.vtk"));
         break;
+      }
 #endif
 #ifdef DEWALL_FUZZ_SIMPLICES
       case simplices:

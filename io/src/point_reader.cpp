@@ -9,10 +9,13 @@
 #include <string_view>
 
 #include "dewall/io/binary_points.hpp"
+#include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/vtk.hpp"
+#include "tetgen_header.hpp"
 #include "text_lines.hpp"
 
 namespace dewall::io {
@@ -193,11 +196,17 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
   Input_file file(path);
   const std::string& name = file.name();
   // Sniffed from the first bytes, which stay in the stream for the parser.
-  if (file.prefix(4) == std::string_view(binary_points_magic, 4))
-    return read_binary_points(file.stream(), name, progress);
-  const auto head = file.prefix(256);
+  const auto magic = file.prefix(4);
+  if (magic == std::string_view(binary_points_magic, 4)) return read_binary_points(file.stream(), name, progress);
+  if (magic == std::string_view(binary_simplices_magic, 4))
+    throw Not_points_error(name + ": holds simplices (dewall's binary .dwsx format), not points");
+  const auto head = file.prefix(4096);
   const bool vtk = is_vtk_header(std::string(head.substr(0, head.find_first_of("\r\n"))));
-  const bool node = path.size() > 5 && path.compare(path.size() - 5, 5, ".node") == 0;
+  const Named_format named = format_named_by(path);
+  if (!vtk && named == Named_format::tetgen_ele)
+    throw Not_points_error(name + ": the name says TetGen simplices (.ele), not points");
+  const bool node = !vtk && (named == Named_format::tetgen_node ||
+                             detail::looks_like_tetgen(head, head.size() < 4096, detail::Tetgen_file::node));
   if (progress) progress->phase("reading " + name, file.size());
   const Point_table t = vtk ? read_vtk_points(file.stream(), name)
                         : node ? read_node(file.stream(), name, progress)

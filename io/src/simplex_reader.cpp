@@ -4,9 +4,13 @@
 #include <cstdint>
 #include <string_view>
 
+#include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/format_names.hpp"
+#include "dewall/io/vtk.hpp"
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
+#include "tetgen_header.hpp"
 #include "text_lines.hpp"
 
 namespace dewall::io {
@@ -131,11 +135,24 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
 
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
   Input_file file(path);
-  if (file.prefix(4) == std::string_view(binary_simplices_magic, 4))
-    return read_binary_simplices(file.stream(), file.name(), dimension);
-  const bool ele = path.size() > 4 && path.compare(path.size() - 4, 4, ".ele") == 0;
-  return ele ? read_ele(file.stream(), file.name(), dimension, first_index)
-             : read_simplices(file.stream(), file.name(), dimension);
+  const std::string& name = file.name();
+  const auto magic = file.prefix(4);
+  if (magic == std::string_view(binary_simplices_magic, 4)) return read_binary_simplices(file.stream(), name, dimension);
+  if (magic == std::string_view(binary_points_magic, 4))
+    throw Not_simplices_error(name + ": holds points (dewall's binary .dwpt format), not simplices");
+  const auto head = file.prefix(4096);
+  if (is_vtk_header(std::string(head.substr(0, head.find_first_of("\r\n"))))) {
+    Simplex_list list;
+    list.format = "vtk";
+    list.table = read_vtk_simplices(file.stream(), name, dimension);
+    return list;
+  }
+  const Named_format named = format_named_by(path);
+  if (named == Named_format::tetgen_node)
+    throw Not_simplices_error(name + ": the name says TetGen points (.node), not simplices");
+  const bool ele = named == Named_format::tetgen_ele ||
+                   detail::looks_like_tetgen(head, head.size() < 4096, detail::Tetgen_file::ele);
+  return ele ? read_ele(file.stream(), name, dimension, first_index) : read_simplices(file.stream(), name, dimension);
 }
 
 }  // namespace dewall::io

@@ -11,19 +11,15 @@
 
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
 #include "dewall/io/vtk.hpp"
+#include "text_lines.hpp"
 
 namespace dewall::io {
 namespace {
-
-bool has_extension(const std::string& path, const std::string& ext) {
-  if (path.size() <= ext.size()) return false;
-  return std::equal(ext.begin(), ext.end(), path.end() - static_cast<std::ptrdiff_t>(ext.size()),
-                    [](char a, char b) { return std::tolower(static_cast<unsigned char>(a)) == b; });
-}
 
 /// No progress line while writing to a terminal's standard output: its carriage
 /// returns would overwrite the very lines being written.
@@ -75,6 +71,7 @@ void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_inde
 
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress) {
+  check_simplices_output_name(path);
   progress = unless_terminal_output(path, progress);
   const bool ele = has_extension(path, ".ele"), binary = has_extension(path, ".dwsx");
   if (progress) progress->phase("writing " + shown(path), ele ? 0 : t.size());
@@ -91,10 +88,11 @@ bool is_vtk_path(const std::string& path) { return has_extension(path, ".vtk"); 
 bool can_stream_simplices(const std::string& path) { return !is_vtk_path(path) && !has_extension(path, ".ele"); }
 
 Simplex_stream_writer::Simplex_stream_writer(const std::string& path, int vertices_per_simplex)
-    : file_(std::make_unique<Output_file>(path)), binary_(has_extension(path, ".dwsx")),
-      k_(static_cast<std::size_t>(vertices_per_simplex)) {
+    : binary_(has_extension(path, ".dwsx")), k_(static_cast<std::size_t>(vertices_per_simplex)) {
   if (!can_stream_simplices(path))
     throw std::invalid_argument(shown(path) + ": .ele and .vtk files start with the count; they cannot be streamed");
+  check_simplices_output_name(path);
+  file_ = std::make_unique<Output_file>(path);
   if (binary_) write_binary_simplices_header(file_->stream(), vertices_per_simplex - 1, binary_simplices_unknown_count);
 }
 
@@ -125,6 +123,7 @@ void Simplex_stream_writer::commit() {
 
 void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
                               Progress* progress) {
+  check_simplices_output_name(path);
   progress = unless_terminal_output(path, progress);
   if (!is_vtk_path(path)) return write_simplices_file(path, t, points.first_index, progress);
   if (points.dimension != 2 && points.dimension != 3)  // refuse before creating anything
@@ -136,13 +135,10 @@ void write_triangulation_file(const std::string& path, const Point_table& points
 void write_points_text(std::ostream& out, const Point_table& t, Progress* progress) {
   const auto d = static_cast<std::size_t>(t.dimension);
   std::string buffer;
-  char number[32];
   for (std::size_t i = 0; i < t.size(); ++i) {
     for (std::size_t j = 0; j < d; ++j) {
       if (j) buffer += ' ';
-      // Shortest representation that reads back to the same double.
-      const auto r = std::to_chars(number, number + sizeof number, t.coordinates[i * d + j]);
-      buffer.append(number, r.ptr);
+      detail::append_shortest(buffer, t.coordinates[i * d + j]);
     }
     buffer += '\n';
     if (buffer.size() > (1u << 16)) {
@@ -154,9 +150,27 @@ void write_points_text(std::ostream& out, const Point_table& t, Progress* progre
   out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
 }
 
+void write_node(std::ostream& out, const Point_table& t) {
+  out << t.size() << ' ' << t.dimension << " 0 0\n";
+  const auto d = static_cast<std::size_t>(t.dimension);
+  std::string line;
+  for (std::size_t i = 0; i < t.size() && out; ++i) {
+    line = std::to_string(i + t.first_index);
+    for (std::size_t j = 0; j < d; ++j) {
+      line += ' ';
+      detail::append_shortest(line, t.coordinates[i * d + j]);
+    }
+    line += '\n';
+    out << line;
+  }
+}
+
 void write_points_file(const std::string& path, const Point_table& t, Progress* progress) {
+  check_points_output_name(path);
   progress = unless_terminal_output(path, progress);
-  if (has_extension(path, ".dwpt")) {
+  if (has_extension(path, ".node")) {
+    write_output_file(path, [&](std::ostream& out) { write_node(out, t); });
+  } else if (has_extension(path, ".dwpt")) {
     if (progress) progress->phase("writing " + shown(path), binary_points_file_size(t.size(), t.dimension));
     write_output_file(path, [&](std::ostream& out) { write_binary_points(out, t, progress); });
   } else if (is_vtk_path(path)) {

@@ -1,10 +1,12 @@
-// Helpers shared by the text readers (points, simplices, VTK): one place for
-// how lines are read, how a line is split into tokens and numbers, and how a
-// message names its file, its line and a bad token (quoted: escaped and cut).
+// Helpers shared by the text readers and writers (points, simplices, VTK): one
+// place for how lines are read, how a line is split into tokens and numbers,
+// how a double is written back exactly, and how a message names its file, its
+// line and a bad token (quoted: escaped and cut).
 #pragma once
 
 #include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -68,6 +70,14 @@ inline double parse_double(std::string_view token_view, const std::string& name,
   if (errno == ERANGE && std::isinf(v))
     throw Parse_error(where(name, line_no) + quoted(token) + " is out of the range of double");
   return v;
+}
+
+/// Appends the shortest decimal form of `v` that reads back to the same double
+/// (std::to_chars guarantees the round trip), so text output loses nothing.
+inline void append_shortest(std::string& text, double v) {
+  char number[32];
+  const auto r = std::to_chars(number, number + sizeof number, v);
+  text.append(number, r.ptr);
 }
 
 /// The lines of a text stream, numbered from 1. A line ends at "\n", "\r\n" or

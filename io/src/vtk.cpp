@@ -23,14 +23,6 @@ namespace {
 
 using detail::where;
 
-/// Shortest decimal form that reads back to the same double (std::to_chars
-/// guarantees the round trip), so VTK output loses nothing.
-void append_number(std::string& s, double v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  s.append(buffer, r.ptr);
-}
-
 void check_writable(int dimension) {
   if (dimension != 2 && dimension != 3)
     throw Vtk_unsupported("VTK output supports points in 2D and 3D only; these are in dimension " +
@@ -90,7 +82,7 @@ void write_header_and_points(std::ostream& out, const Point_table& p, const char
     line.clear();
     for (std::size_t j = 0; j < d; ++j) {
       if (j) line += ' ';
-      append_number(line, p.coordinates[i * d + j]);
+      detail::append_shortest(line, p.coordinates[i * d + j]);
     }
     if (d == 2) line += " 0";
     line += '\n';
@@ -148,10 +140,11 @@ std::vector<std::string> split(const std::string& line) {
 }
 
 /// Reads `n` big-endian values of `Stored` (VTK's binary legacy files are
-/// big-endian whatever the host) into doubles.
-template <class Stored>
-void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, const std::string& name,
-                     std::size_t points) {
+/// big-endian whatever the host) into `out`, converted to Value; `section`
+/// says in messages what announced them ("the POINTS section announces 5 points").
+template <class Stored, class Value>
+void read_big_endian(std::istream& in, std::size_t n, std::vector<Value>& out, const std::string& name,
+                     const std::string& section) {
   // Read in bounded chunks: the header's count is not trusted with an allocation
   // before the bytes are there (a 100-byte file may announce 2^40 points: fuzz
   // finding f2e10cdf).
@@ -162,8 +155,8 @@ void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, 
     bytes.resize(std::min(chunk_values, n - out.size()) * sizeof(Stored));
     in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     if (static_cast<std::size_t>(in.gcount()) != bytes.size())
-      throw Parse_error(name + ": truncated: the POINTS section announces " + std::to_string(points) + " points (" +
-                        std::to_string(n * sizeof(Stored)) + " bytes of binary data), the file has " +
+      throw Parse_error(name + ": truncated: " + section + " (" + std::to_string(n * sizeof(Stored)) +
+                        " bytes of binary data), the file has " +
                         std::to_string(out.size() * sizeof(Stored) + static_cast<std::size_t>(in.gcount())));
     for (std::size_t i = 0; i < bytes.size(); i += sizeof(Stored)) {
       unsigned char b[sizeof(Stored)];
@@ -171,7 +164,7 @@ void read_big_endian(std::istream& in, std::size_t n, std::vector<double>& out, 
       if constexpr (std::endian::native == std::endian::little) std::reverse(b, b + sizeof(Stored));
       Stored v;
       std::memcpy(&v, b, sizeof(Stored));
-      out.push_back(static_cast<double>(v));
+      out.push_back(static_cast<Value>(v));
     }
   }
 }
@@ -196,18 +189,19 @@ std::string announced(unsigned long long count) {
 /// this is where a wrong count shows: with fewer points announced than stored
 /// the next bytes are coordinates; with more, the reading ran on into the next
 /// section and stops in its middle (or at the end of the file: truncated).
-void expect_end_of_binary_points(std::istream& in, const std::string& name, std::size_t points_line,
-                                 unsigned long long count) {
+/// Returns the keyword found ("" at the end of the file).
+std::string expect_end_of_binary_points(std::istream& in, const std::string& name, std::size_t points_line,
+                                        unsigned long long count) {
   using traits = std::char_traits<char>;
   auto c = in.peek();
   while (c != traits::eof() && std::isspace(c)) {
     in.get();
     c = in.peek();
   }
-  if (c == traits::eof()) return;
+  if (c == traits::eof()) return {};
   std::string token;
   while (token.size() < 32 && (c = in.peek()) != traits::eof() && !std::isspace(c)) token += static_cast<char>(in.get());
-  if (is_section_keyword(token)) return;
+  if (is_section_keyword(token)) return token;
   // (The bytes found are binary: not quoted.)
   throw Parse_error(where(name, points_line) + "count mismatch: the POINTS section announces " + announced(count) +
                     ", but its binary data is followed by neither the end of the file nor a section keyword "
@@ -247,8 +241,18 @@ void write_vtk_points(std::ostream& out, const Point_table& points, Progress* pr
   if (progress) progress->finish();
 }
 
-Point_table read_vtk_points(std::istream& in, const std::string& name) {
-  detail::Line_source source(in);
+namespace {
+
+/// The POINTS section of a legacy file, read from its first line on: three
+/// coordinates a point, and the header line of the section after it (its
+/// tokens; none at the end of the file).
+struct Points_section {
+  std::vector<double> xyz;
+  bool binary = false;
+  std::vector<std::string> next_header;
+};
+
+Points_section read_points_section(std::istream& in, detail::Line_source& source, const std::string& name) {
   std::string line;
   std::size_t line_no = 0;
   auto next_line = [&] {
@@ -283,12 +287,20 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
   const std::string type = lower(tokens[2]);
   const std::size_t n = static_cast<std::size_t>(count) * 3;
 
-  std::vector<double> xyz;
-  if (mode == "binary") {
-    if (type == "double") read_big_endian<double>(in, n, xyz, name, count);
-    else if (type == "float") read_big_endian<float>(in, n, xyz, name, count);
+  Points_section section;
+  auto& xyz = section.xyz;
+  section.binary = mode == "binary";
+  if (section.binary) {
+    const std::string announces = "the POINTS section announces " + announced(count);
+    if (type == "double") read_big_endian<double>(in, n, xyz, name, announces);
+    else if (type == "float") read_big_endian<float>(in, n, xyz, name, announces);
     else throw Parse_error(where(name, line_no) + "binary POINTS of type " + quoted(tokens[2]) + " are not supported (float, double)");
-    expect_end_of_binary_points(in, name, points_line, count);
+    const std::string keyword = expect_end_of_binary_points(in, name, points_line, count);
+    if (!keyword.empty()) {
+      std::string rest;
+      std::getline(in, rest);
+      section.next_header = split(keyword + " " + rest);
+    }
   } else {
     xyz.reserve(std::min<std::size_t>(n, std::size_t{1} << 16));  // not trusting the count (f2e10cdf)
     // The section ends with its last coordinate: more on that line, or a
@@ -314,12 +326,31 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
       bool more = next_line();
       while (more && split(line).empty()) more = next_line();
       if (more && detail::is_number(split(line).front())) throw too_many();
+      if (more) section.next_header = split(line);
     }
     if (xyz.size() != n)
       throw Parse_error(where(name, points_line) + "truncated: the POINTS section announces " + announced(count) +
                         ", the file has " + std::to_string(xyz.size()));
   }
+  return section;
+}
 
+/// A count of a section header ("CELLS <count> <size>"), at most 2^40.
+std::size_t section_count(const std::string& token, const std::string& name, const char* what) {
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long long v = std::strtoull(token.c_str(), &end, 10);
+  if (token.empty() || *end != '\0' || errno == ERANGE || token[0] == '-' || v > (1ull << 40))
+    throw Parse_error(name + ": invalid " + what + " " + quoted(token) + " in the CELLS header");
+  return static_cast<std::size_t>(v);
+}
+
+}  // namespace
+
+Point_table read_vtk_points(std::istream& in, const std::string& name) {
+  detail::Line_source source(in);
+  auto xyz = read_points_section(in, source, name).xyz;
+  const std::size_t n = xyz.size();
   // VTK has no 2D point type: a plane drawing stores z = 0. A 3D set with every
   // z equal to 0 could not be triangulated in E^3 anyway (it is flat).
   bool flat = true;
@@ -327,10 +358,62 @@ Point_table read_vtk_points(std::istream& in, const std::string& name) {
   Point_table t;
   t.dimension = flat ? 2 : 3;
   if (flat) {
-    t.coordinates.reserve(2 * static_cast<std::size_t>(count));
+    t.coordinates.reserve(2 * (n / 3));
     for (std::size_t i = 0; i < n; i += 3) t.coordinates.insert(t.coordinates.end(), {xyz[i], xyz[i + 1]});
   } else {
     t.coordinates = std::move(xyz);
+  }
+  return t;
+}
+
+Simplex_table read_vtk_simplices(std::istream& in, const std::string& name, int dimension) {
+  detail::Line_source source(in);
+  const Points_section points = read_points_section(in, source, name);
+  const auto& header = points.next_header;
+  if (header.empty() || lower(header[0]) != "cells")
+    throw Parse_error(name + ": no CELLS section after the POINTS: the file holds points, not simplices");
+  if (header.size() != 3) throw Parse_error(name + ": expected 'CELLS <count> <size>' after the POINTS");
+  const std::size_t count = section_count(header[1], name, "cell count");
+  const std::size_t size = section_count(header[2], name, "size");
+  const auto k = static_cast<std::size_t>(dimension + 1);
+  // Each cell is its vertex count and its vertices: simplices of E^D all take k + 1 values.
+  if (size != count * (k + 1)) {
+    const std::string kind = count && size % count == 0 && size / count >= 1
+                                 ? "cells of " + std::to_string(size / count - 1) + " vertices"
+                                 : "cells of mixed sizes";
+    throw Parse_error(name + ": the CELLS section holds " + kind + ", not simplices of dimension " +
+                      std::to_string(dimension) + " (" + std::to_string(k) + " vertices each)");
+  }
+  std::vector<std::uint32_t> values;
+  if (points.binary) {
+    read_big_endian<std::uint32_t>(in, size, values, name,
+                                   "the CELLS section announces " + std::to_string(count) + " cells");
+  } else {
+    values.reserve(std::min<std::size_t>(size, std::size_t{1} << 16));  // not trusting the count
+    std::string line;
+    while (values.size() < size && source.next(line))
+      detail::for_each_token(line, [&](std::string_view token) {
+        if (values.size() == size || is_section_keyword(std::string(token)))
+          throw Parse_error(where(name, source.number()) + "the CELLS section does not hold the " + std::to_string(size) +
+                            " values its header announces");
+        const double v = detail::parse_double(token, name, source.number());
+        if (!(v >= 0 && v <= 4294967295.0 && v == std::floor(v)))
+          throw Parse_error(where(name, source.number()) + quoted(token) + " is not a vertex index (a non-negative integer)");
+        values.push_back(static_cast<std::uint32_t>(v));
+      });
+    if (values.size() != size)
+      throw Parse_error(name + ": truncated: the CELLS section announces " + std::to_string(size) + " values, the file has " +
+                        std::to_string(values.size()));
+  }
+  Simplex_table t;
+  t.vertices_per_simplex = dimension + 1;
+  t.indices.reserve(count * k);
+  for (std::size_t c = 0; c < count; ++c) {
+    const std::uint32_t* cell = &values[c * (k + 1)];
+    if (cell[0] != k)
+      throw Parse_error(name + ": cell " + std::to_string(c) + " has " + std::to_string(cell[0]) +
+                        " vertices, not the " + std::to_string(k) + " of a simplex of dimension " + std::to_string(dimension));
+    t.indices.insert(t.indices.end(), cell + 1, cell + 1 + k);
   }
   return t;
 }

@@ -119,6 +119,17 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
   return arena.execute(isolated);
 }
 
+/// `options` for a caller who asks for wall levels: Engine::automatic
+/// becomes Engine::dewall (the automatic choice may build small inputs without
+/// a wall). \throws std::invalid_argument for an engine that builds no walls.
+inline Options options_with_walls(Options options) {
+  if (options.engine == Engine::automatic) options.engine = Engine::dewall;
+  if (options.engine == Engine::incremental || options.engine == Engine::cgal)
+    throw std::invalid_argument(std::string("dewall: wall levels come from DeWall's walls, and Engine::") +
+                                engine_name(options.engine) + " builds none (use Engine::dewall or Engine::hybrid)");
+  return options;
+}
+
 /// Hands each simplex of the engine's blocks to a caller's sink: sink(simplex),
 /// or sink(simplex, level) when it takes the wall's recursion level.
 template <int D, class Sink>
@@ -149,7 +160,11 @@ class Sink_output final : public Simplex_output<D> {
 /// each simplex (a dewall::Simplex<D> of input indices, positively oriented).
 /// A sink callable as sink(simplex, level) also receives the recursion level
 /// of the wall that built the simplex (0: the first wall; the paper's
-/// Figures 2, 4, 5; 0 for every simplex the incremental engine built).
+/// Figures 2, 4, 5). Levels come from walls: with such a sink,
+/// Engine::automatic runs DeWall's walls all the way down (Engine::dewall),
+/// Engine::hybrid gives each region's simplices the region's level, and
+/// Engine::incremental and Engine::cgal, which build no walls, are refused
+/// (std::invalid_argument).
 ///
 /// By default the simplices are handed over once the triangulation is
 /// complete, in DeWall's depth-first order, then the hybrid's gift-wrapped
@@ -186,7 +201,10 @@ template <kernel::DelaunayKernel K, class Sink>
 Statistics triangulate_to(std::span<const typename K::Point_d> points, Sink&& sink, const Options& options = {},
                           const K& k = {}) {
   detail::Sink_output<K::dimension, std::remove_reference_t<Sink>> output(sink);
-  return detail::run_triangulation<K>(points, options, k, output);
+  if constexpr (std::is_invocable_v<Sink&, const Simplex<K::dimension>&, int>)
+    return detail::run_triangulation<K>(points, detail::options_with_walls(options), k, output);
+  else
+    return detail::run_triangulation<K>(points, options, k, output);
 }
 
 /// The triangulation as a list of simplices.

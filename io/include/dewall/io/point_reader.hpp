@@ -5,7 +5,8 @@
 // starts a comment; the dimension is the number of values on the first data line.
 // rbox: a line with the dimension alone, a line with the count alone (rbox may
 // append a comment to either), then the points. TetGen .node (chosen by the
-// file extension): "<count> <dimension> <#attributes> <boundary marker>", then
+// file extension, or by its header and rows when the name does not say):
+// "<count> <dimension> <#attributes> <boundary marker>", then
 // "<index> <coordinates> [attributes] [marker]" lines.
 #pragma once
 
@@ -23,6 +24,13 @@ class Progress;
 class Parse_error : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+/// An input that holds something else than points (simplices: a .dwsx file,
+/// or a name ending in .ele), e.g. the two files of `certify` swapped.
+class Not_points_error : public Parse_error {
+ public:
+  using Parse_error::Parse_error;
 };
 
 /// Points of one dimension, coordinates stored point after point.
@@ -45,9 +53,13 @@ Point_table read_node(std::istream& in, const std::string& name, Progress* progr
 
 /// Reads a file by path ("-" is standard input), choosing the format by its
 /// content first: the magic bytes "DWPT" select the binary format, a first line
-/// "# vtk DataFile …" legacy VTK; then by extension: ".node" selects TetGen's
-/// format; anything else is plain text or rbox. `progress`, when given, shows a
+/// "# vtk DataFile …" legacy VTK; then by extension (any case): ".node" selects
+/// TetGen's format; then a TetGen .node header and rows recognised in the first
+/// bytes (through a pipe, or under another name) select it too; anything else
+/// is plain text or rbox. `progress`, when given, shows a
 /// "reading" phase (a percentage for files, elapsed time for standard input).
+/// \throws Not_points_error for a file of simplices (magic "DWSX", or a name
+/// ending in .ele); Parse_error for anything unreadable.
 Point_table read_points_file(const std::string& path, Progress* progress = nullptr);
 
 }  // namespace dewall::io

@@ -1,5 +1,6 @@
-// Reading simplex lists: the plain list, TetGen .ele, Qhull's `qdelaunay i` and
-// the binary format (binary_simplices.hpp, recognised by its magic bytes).
+// Reading simplex lists: the plain list, TetGen .ele, Qhull's `qdelaunay i`,
+// the binary format (binary_simplices.hpp, recognised by its magic bytes) and
+// the cells of legacy VTK files (vtk.hpp, recognised by their first line).
 //
 // Plain list: one simplex per line, its D + 1 zero-based point indices
 // separated by whitespace, any vertex order, any line order; `#` starts a
@@ -8,8 +9,9 @@
 // zero-based indices; recognised by that lone count. A facet with more than
 // D + 1 vertices is a non-simplicial Delaunay region: Qhull writes those
 // without `Qt`, and they are rejected (run qdelaunay with Qt). TetGen .ele
-// (chosen by the extension): "<count> <vertices per simplex> <#attributes>",
-// then "<index> <v_0> … <v_D> [attributes]", numbered like the .node file.
+// (chosen by the extension, or by its header and rows when the name does not
+// say): "<count> <vertices per simplex> <#attributes>", then
+// "<index> <v_0> … <v_D> [attributes]", numbered like the .node file.
 #pragma once
 
 #include <cstddef>
@@ -22,12 +24,19 @@
 
 namespace dewall::io {
 
+/// An input that holds points, not simplices (a .dwpt file, a name ending in
+/// .node), e.g. the two files of `certify` swapped.
+class Not_simplices_error : public Parse_error {
+ public:
+  using Parse_error::Parse_error;
+};
+
 /// A simplex list as read: the rows (zero-based indices) and the line of the
 /// file each row came from, for messages.
 struct Simplex_list {
   Simplex_table table;
   std::vector<std::size_t> lines;  // lines[r]: the 1-based line of row r; empty for binary
-  std::string format;              // "plain", "qhull", "tetgen" or "binary"
+  std::string format;              // "plain", "qhull", "tetgen", "binary" or "vtk"
 
   /// Where row r is, for messages: "NAME:LINE", or "NAME" for a binary file.
   std::string where(const std::string& name, std::size_t r) const {
@@ -47,8 +56,12 @@ Simplex_list read_simplices(std::istream& in, const std::string& name, int dimen
 /// \throws Parse_error as read_simplices, and on a vertex number below first_index.
 Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, std::size_t first_index);
 
-/// Reads a file by path ("-" = standard input); the magic bytes 'DWSX' select
-/// the binary format, the extension ".ele" TetGen's.
+/// Reads a file by path ("-" = standard input), choosing the format by its
+/// content first: the magic bytes 'DWSX' select the binary format, a first
+/// line "# vtk DataFile …" VTK's cells; then the extension ".ele" (any case) or
+/// an .ele header recognised in the first bytes TetGen's; anything else is the
+/// plain list or Qhull's. \throws Not_simplices_error for a file of points
+/// (magic 'DWPT', a name ending in .node); Parse_error for anything unreadable.
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index);
 
 }  // namespace dewall::io

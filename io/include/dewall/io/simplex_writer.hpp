@@ -37,8 +37,10 @@ void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress =
 void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_index);
 
 /// Writes to `path` ("-" = standard output) through io::Output_file: the
-/// binary format for ".dwsx", TetGen's for ".ele", the plain list otherwise.
-/// \throws Write_error when the file cannot be written.
+/// binary format for ".dwsx", TetGen's for ".ele", the plain list otherwise
+/// (extensions in any case).
+/// \throws Write_error when the file cannot be written, or its name says a
+/// format which holds no simplices (format_names.hpp), before anything is written.
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress = nullptr);
 
@@ -85,8 +87,14 @@ class Simplex_stream_writer {
 /// shortest form that reads back to the same double (the round trip is exact).
 void write_points_text(std::ostream& out, const Point_table& t, Progress* progress = nullptr);
 
+/// TetGen .node: "<count> <dimension> 0 0", then "<i> <coordinates>", numbered
+/// from t.first_index, coordinates in the shortest exact form.
+void write_node(std::ostream& out, const Point_table& t);
+
 /// Writes points to `path` ("-" = standard output) through io::Output_file: the binary format
-/// for ".dwpt", legacy VTK for ".vtk", plain text otherwise.
+/// for ".dwpt", TetGen's for ".node", legacy VTK for ".vtk", plain text otherwise
+/// (extensions in any case). \throws Write_error for a name that says a format
+/// which holds no points (format_names.hpp), before anything is written.
 void write_points_file(const std::string& path, const Point_table& t, Progress* progress = nullptr);
 
 }  // namespace dewall::io

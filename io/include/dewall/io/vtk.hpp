@@ -15,6 +15,10 @@
 // Read: the POINTS section of any legacy file (ASCII or BINARY, float or
 // double; POLYDATA, UNSTRUCTURED_GRID, STRUCTURED_GRID). VTK points always have
 // three coordinates; the point set is taken as 2D when every z is 0, else 3D.
+// And the simplices of an UNSTRUCTURED_GRID: its CELLS section, right after
+// the POINTS, each cell of D + 1 vertices (what write_vtk_triangulation
+// writes, and ParaView or meshio save), so that every file the tool writes
+// can be certified and drawn.
 #pragma once
 
 #include <iosfwd>
@@ -52,6 +56,12 @@ void write_vtk_points(std::ostream& out, const Point_table& points, Progress* pr
 /// \throws Parse_error (with the file and line) on a missing or malformed header
 /// or POINTS section, non-numbers, or a truncated section.
 Point_table read_vtk_points(std::istream& in, const std::string& name);
+
+/// Reads the CELLS section of a legacy VTK file as simplices of `dimension`
+/// (the dimension of its points: 2 when every z is 0). \throws Parse_error
+/// when there is none, or a cell is not a simplex of D + 1 vertices, or the
+/// section is truncated or malformed.
+Simplex_table read_vtk_simplices(std::istream& in, const std::string& name, int dimension);
 
 /// True when `first_line` is the first line of a legacy VTK file ("# vtk DataFile …").
 bool is_vtk_header(const std::string& first_line);

@@ -1,0 +1,212 @@
+// A newcomer's first hour (issue 57): no wrong answer and no data loss at the
+// door. Wall levels come from walls; a TetGen file through a pipe is read as
+// TetGen; an output never replaces its input; what the tool writes it reads
+// back, and a name that says another format than what is written is refused;
+// --stats prints the counters of the engines that ran; an option the chosen
+// engine ignores is a usage error; --name=VALUE works. Each case runs the real
+// executable in its own folder.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "dewall/dewall.hpp"
+#include "support/cli_runner.hpp"
+
+namespace {
+
+using dewall::test::Cli_in_directory;
+using dewall::test::slurp;
+namespace fs = std::filesystem;
+
+Cli_in_directory fresh(const std::string& name) {
+  fs::remove_all(name);
+  return Cli_in_directory(name);
+}
+
+/// The fill colours of an SVG's triangles (polygons), each once.
+std::set<std::string> triangle_fills(const std::string& svg) {
+  std::set<std::string> fills;
+  const std::regex polygon(R"re(<polygon[^>]*fill="([^"]+)")re");
+  for (auto it = std::sregex_iterator(svg.begin(), svg.end(), polygon); it != std::sregex_iterator(); ++it)
+    fills.insert((*it)[1]);
+  return fills;
+}
+
+// Five points in E^3 (a tetrahedron and a point above), as TetGen writes them.
+const std::string node_file = "5 3 0 0\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n5 1 1 1\n";
+
+}  // namespace
+
+TEST_CASE("newcomer: draw --walls colours the triangles by several wall levels", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_walls");
+  REQUIRE(cli("generate bubbles 300 --dim 2 --seed 42 -q -o b.txt").status == 0);
+  REQUIRE(cli("draw b.txt --walls -o bw.svg").status == 0);
+  const std::string svg = slurp(cli.path("bw.svg"));
+  // The README's headline figure: the first wall and the levels below it.
+  CHECK(triangle_fills(svg).size() >= 4);
+  CHECK(svg.find(">3</text>") != std::string::npos);  // the legend reaches level 3
+}
+
+TEST_CASE("newcomer: the library's wall levels come from walls", "[dewall][newcomer]") {
+  std::vector<dewall::kernel::Point_d<2>> points;
+  for (int i = 0; i < 400; ++i) points.push_back({{(i * 37 % 101) / 101.0, (i * 53 % 97) / 97.0 + i * 1e-4}});
+  const std::span<const dewall::kernel::Point_d<2>> view(points);
+  using K = dewall::kernel::Filtered_kernel_d<2>;
+  std::set<int> levels;
+  std::size_t with_levels = 0;
+  dewall::triangulate_to<K>(view, [&](const dewall::Simplex<2>&, int level) { levels.insert(level), ++with_levels; });
+  CHECK(levels.size() >= 3);
+  CHECK(with_levels == dewall::triangulate<2>(points).simplices.size());
+  for (const auto engine : {dewall::Engine::incremental, dewall::Engine::cgal}) {
+    dewall::Options options;
+    options.engine = engine;
+    CHECK_THROWS_AS(dewall::triangulate_to<K>(view, [](const dewall::Simplex<2>&, int) {}, options),
+                    std::invalid_argument);
+  }
+}
+
+TEST_CASE("newcomer: a TetGen file whose name does not say is read as TetGen", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_tetgen_by_content");
+  cli.write("a.node", node_file);
+  cli.write("a.txt", node_file);
+  const auto by_name = cli("triangulate a.node");
+  REQUIRE(by_name.status == 0);
+  CHECK(by_name.out.find("4 2 3") == std::string::npos);  // never the header taken for a 4D point
+  const auto piped = cli("triangulate -", "cat a.node | ");
+  CHECK(piped.status == 0);
+  CHECK(piped.out == by_name.out);
+  CHECK(cli("triangulate a.txt").out == by_name.out);
+  // And the .ele written from it, through a pipe, for certify.
+  REQUIRE(cli("triangulate a.node -o a.ele").status == 0);
+  const auto certified = cli("certify --canonical a.node -", "cat a.ele | ");
+  CHECK(certified.status == 0);
+  CHECK(certified.out.find("delaunay canonical") == 0);
+  // A plain 4D file whose first column does not count up stays plain.
+  cli.write("plain4.txt", "5 3 0 0\n1 0 0 0\n0 1 0 0\n0 0 1 0\n0 0 0 1\n2 2 2 2\n");
+  const auto plain = cli("triangulate plain4.txt --stats");
+  CHECK(plain.status == 0);
+  CHECK(plain.err.find("points=6 ") == 0);
+}
+
+TEST_CASE("newcomer: the output never replaces the input", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_output_is_input");
+  const std::string points = "0 0\n1 0\n0 1\n1 1\n";
+  cli.write("p.txt", points);
+  fs::create_symlink("p.txt", cli.path("link.txt"));
+  for (const std::string& run : {std::string("triangulate p.txt -o p.txt"), std::string("triangulate p.txt -o link.txt"),
+                                 std::string("triangulate - -o p.txt < p.txt"),
+                                 std::string("draw p.txt --walls -o p.txt")}) {
+    const auto r = cli.shell("$DEWALL " + run);
+    INFO(run << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("the output is the input") != std::string::npos);
+    CHECK(slurp(cli.path("p.txt")) == points);
+  }
+  const auto appended = cli.shell("$DEWALL triangulate p.txt >> p.txt");
+  CHECK(appended.status == 2);
+  CHECK(slurp(cli.path("p.txt")) == points);
+}
+
+TEST_CASE("newcomer: what the tool writes it reads back, whatever the case of the name", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_round_trips");
+  REQUIRE(cli("generate uniform 40 --dim 2 --seed 5 -q -o p.txt").status == 0);
+  SECTION("VTK: certify and draw read the cells of a triangulation") {
+    REQUIRE(cli("triangulate p.txt -o x.VTK").status == 0);
+    const auto certified = cli("certify --canonical p.txt x.VTK");
+    CHECK(certified.status == 0);
+    CHECK(certified.out.find("delaunay canonical") == 0);
+    CHECK(cli("certify --canonical x.VTK x.VTK").status == 0);  // the points from the same file
+    CHECK(cli("draw p.txt x.VTK -o x.svg").status == 0);
+    // A VTK file of points holds no simplices: said, not misread.
+    REQUIRE(cli("generate uniform 40 --dim 2 --seed 5 -q -o points.vtk").status == 0);
+    const auto no_cells = cli("certify p.txt points.vtk");
+    CHECK(no_cells.status == 2);
+    CHECK(no_cells.err.find("cells of 1 vertices, not simplices") != std::string::npos);
+  }
+  SECTION("an ASCII VTK triangulation, as other tools write it") {
+    cli.write("q.txt", "0 0\n1 0\n0 1\n1 1\n");
+    cli.write("q.vtk", "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+                       "0 0 0 1 0 0 0 1 0 1 1 0\nCELLS 2 8\n3 0 1 3\n3 0 3 2\nCELL_TYPES 2\n5\n5\n");
+    CHECK(cli("certify q.txt q.vtk").status == 0);
+    cli.write("bad.vtk", "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n"
+                         "0 0 0 1 0 0 0 1 0 1 1 0\nCELLS 2 8\n3 0 1 3\n3 0 3\n");
+    CHECK(cli("certify q.txt bad.vtk").status == 2);
+  }
+  SECTION("TetGen: generate writes .node, triangulate and certify read it") {
+    REQUIRE(cli("generate uniform 30 --seed 2 -q -o G.NODE").status == 0);
+    CHECK(slurp(cli.path("G.NODE")).rfind("30 3 0 0\n0 ", 0) == 0);
+    REQUIRE(cli("triangulate G.NODE -o G.Ele").status == 0);
+    CHECK(cli("certify --canonical G.NODE G.Ele").status == 0);
+  }
+  SECTION("binary: the extension in any case") {
+    REQUIRE(cli("triangulate p.txt -o U.DWSX").status == 0);
+    CHECK(slurp(cli.path("U.DWSX")).rfind("DWSX", 0) == 0);
+    REQUIRE(cli("generate uniform 30 --seed 2 -q -o P.DwPt").status == 0);
+    CHECK(slurp(cli.path("P.DwPt")).rfind("DWPT", 0) == 0);
+    const auto swapped = cli("certify U.DWSX p.txt");
+    CHECK(swapped.status == 2);
+    CHECK(swapped.err.find("the arguments look swapped") != std::string::npos);
+  }
+  SECTION("a name that says another format is refused before anything is written") {
+    for (const std::string& run : {std::string("triangulate p.txt -o s.dwpt"), std::string("triangulate p.txt -o s.Node"),
+                                   std::string("triangulate p.txt -o s.ply"), std::string("triangulate p.txt --stream -o s.msh"),
+                                   std::string("generate uniform 10 -q -o s.ele"), std::string("generate uniform 10 -q -o s.dwsx"),
+                                   std::string("generate uniform 10 -q -o s.off")}) {
+      const auto r = cli(run);
+      INFO(run << ": " << r.err);
+      CHECK(r.status == 2);
+      CHECK(r.err.find("the name says") != std::string::npos);
+    }
+    for (const auto& entry : fs::directory_iterator(cli.dir))
+      CHECK(entry.path().filename().string().rfind("s.", 0) != 0);
+  }
+}
+
+TEST_CASE("newcomer: --stats prints the counters of the engines that ran", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_stats");
+  REQUIRE(cli("generate bubbles 300 --dim 2 --seed 42 -q -o b.txt").status == 0);
+  const auto incremental = cli("triangulate b.txt --stats -o t.txt");
+  CHECK(incremental.status == 0);
+  CHECK(incremental.err.find("built: dewall's incremental construction 588 simplices") != std::string::npos);
+  CHECK(incremental.err.find("first_wall_simplices") == std::string::npos);
+  const auto walls = cli("triangulate b.txt --engine=dewall --stats -o t.txt");
+  CHECK(walls.status == 0);
+  CHECK(walls.err.find("built: walls 588 simplices") != std::string::npos);
+  CHECK(std::regex_search(walls.err, std::regex("first_wall_simplices=[1-9][0-9]* recursion_depth=[1-9]")));
+  const auto hybrid = cli("triangulate b.txt --engine hybrid --region-points=50 --stats -o t.txt");
+  CHECK(std::regex_search(hybrid.err, std::regex("built: walls [1-9][0-9]* simplices, regions \\(incremental construction\\) [1-9]")));
+}
+
+TEST_CASE("newcomer: options the engine ignores are usage errors, --name=VALUE works", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_options");
+  cli.write("p.txt", "0 0\n1 0\n0 1\n1 1\n");
+  CHECK(cli("triangulate p.txt --engine cgal --region-points 100").status == 2);
+  CHECK(cli("triangulate p.txt --engine dewall --incremental-engine cgal").status == 2);
+  CHECK(cli("triangulate p.txt --engine incremental --incremental-engine cgal").status == 2);
+  const auto gnu = cli("triangulate p.txt --threads=2 --engine=cgal --stats");
+  CHECK(gnu.status == 0);
+  CHECK(gnu.err.find("engine=cgal") != std::string::npos);
+  CHECK(gnu.out == cli("triangulate p.txt --threads 2 --engine cgal").out);
+}
+
+TEST_CASE("newcomer: certify says 'no simplices' and lists each violation once", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_certify");
+  REQUIRE(cli("generate uniform 30 --dim 2 --seed 3 -q -o p.txt").status == 0);
+  cli.write("empty.txt", "");
+  const auto empty = cli("certify p.txt empty.txt");
+  CHECK(empty.status == 2);
+  CHECK(empty.err.find("no simplices") != std::string::npos);
+  REQUIRE(cli("triangulate p.txt -o t.txt").status == 0);
+  std::string t = slurp(cli.path("t.txt"));
+  cli.write("bad.txt", t.substr(t.find('\n') + 1));  // the first triangle gone: a hole
+  const auto all = cli("certify --all p.txt bad.txt");
+  CHECK(all.status == 1);
+  // Each violation's line once: the header names none.
+  const std::string first = all.out.substr(all.out.find('\n') + 1, all.out.find('\n', all.out.find('\n') + 1) - all.out.find('\n') - 1);
+  CHECK(all.out.find(first.substr(2)) == all.out.rfind(first.substr(2)));
+}
