@@ -148,8 +148,10 @@ std::size_t parse_point_count(const std::string& s) {
   char* end = nullptr;
   errno = 0;
   const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || errno == ERANGE || !(v >= 0) || v != std::floor(v) || v > 1e12 ||
-      s.find_first_of("xXpP") != std::string::npos)  // no hexadecimal
+  const bool number = !s.empty() && *end == '\0' && s.find_first_of("xXpP") == std::string::npos;  // no hexadecimal
+  if (number && ((errno == ERANGE && v != 0) || (v > 1e12 && v == std::floor(v))))
+    throw Usage_error("point count " + io::quoted(s) + " is too large (at most 1e12)");
+  if (!number || errno == ERANGE || !(v >= 0) || v != std::floor(v))
     throw Usage_error("invalid point count " + io::quoted(s) + " (a whole number such as 1000 or 1e6)");
   return static_cast<std::size_t>(v);
 }
@@ -178,6 +180,8 @@ long parse_long(const std::string& s, const char* what) {
   char* end = nullptr;
   errno = 0;
   const long v = std::strtol(s.c_str(), &end, 10);
+  if (!s.empty() && *end == '\0' && errno == ERANGE && v > 0)
+    throw Usage_error(std::string(what) + " " + io::quoted(s) + " is too large");
   if (s.empty() || *end != '\0' || v < 0 || errno == ERANGE)
     throw Usage_error(std::string("invalid ") + what + ": " + io::quoted(s));
   return v;

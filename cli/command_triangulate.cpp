@@ -1,8 +1,11 @@
 // dewall triangulate INPUT [-o OUTPUT] [--engine auto|dewall|hybrid|incremental|cgal] [--threads N] [--stream]
 //                    [--region-points N] [--incremental-engine auto|incremental|cgal] [--stats] [--quiet|-q]
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli.hpp"
 #include "dewall/error.hpp"
@@ -14,6 +17,63 @@
 #include "dewall/io/vtk.hpp"
 
 namespace dewall::cli {
+
+namespace {
+
+/// True when the points lie on one sphere, to within a relative 10^-6 of its
+/// radius (a least-squares fit: |p|^2 = 2 c.p + k, solved by Gaussian
+/// elimination on the normal equations). A warning's heuristic, never a
+/// decision about the triangulation.
+bool on_one_sphere(const io::Point_table& t) {
+  const auto d = static_cast<std::size_t>(t.dimension), n = t.size(), m = d + 1;
+  if (n <= m) return false;
+  std::vector<double> low(t.coordinates.begin(), t.coordinates.begin() + static_cast<std::ptrdiff_t>(d)), high = low;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < d; ++j)
+      low[j] = std::min(low[j], t.coordinates[i * d + j]), high[j] = std::max(high[j], t.coordinates[i * d + j]);
+  // Centred on the box and scaled by its largest half-width (one scale for
+  // every axis: a sphere stays a sphere), so that the normal equations stay well conditioned.
+  double half = 0;
+  for (std::size_t j = 0; j < d; ++j) half = std::max(half, high[j] / 2 - low[j] / 2);
+  if (!(half > 0) || !std::isfinite(half)) return false;
+  const auto x = [&](std::size_t i, std::size_t j) {
+    return (t.coordinates[i * d + j] - (low[j] / 2 + high[j] / 2)) / half;
+  };
+  std::vector<double> a(m * (m + 1), 0.0);  // [A^T A | A^T b], rows (x_1 … x_d, 1)
+  std::vector<double> row(m + 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    double b = 0;
+    for (std::size_t j = 0; j < d; ++j) row[j] = 2 * x(i, j), b += x(i, j) * x(i, j);
+    row[d] = 1, row[m] = b;
+    for (std::size_t r = 0; r < m; ++r)
+      for (std::size_t c = 0; c <= m; ++c) a[r * (m + 1) + c] += row[r] * row[c];
+  }
+  for (std::size_t p = 0; p < m; ++p) {
+    std::size_t best = p;
+    for (std::size_t r = p + 1; r < m; ++r)
+      if (std::abs(a[r * (m + 1) + p]) > std::abs(a[best * (m + 1) + p])) best = r;
+    if (a[best * (m + 1) + p] == 0) return false;
+    for (std::size_t c = 0; c <= m; ++c) std::swap(a[p * (m + 1) + c], a[best * (m + 1) + c]);
+    for (std::size_t r = 0; r < m; ++r) {
+      if (r == p) continue;
+      const double f = a[r * (m + 1) + p] / a[p * (m + 1) + p];
+      for (std::size_t c = p; c <= m; ++c) a[r * (m + 1) + c] -= f * a[p * (m + 1) + c];
+    }
+  }
+  std::vector<double> centre(d);
+  double r2 = a[d * (m + 1) + m] / a[d * (m + 1) + d];
+  for (std::size_t j = 0; j < d; ++j) centre[j] = a[j * (m + 1) + m] / a[j * (m + 1) + j], r2 += centre[j] * centre[j];
+  if (!(r2 > 0)) return false;
+  double worst = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double s = 0;
+    for (std::size_t j = 0; j < d; ++j) s += (x(i, j) - centre[j]) * (x(i, j) - centre[j]);
+    worst = std::max(worst, std::abs(s - r2));
+  }
+  return worst <= 2e-6 * r2;
+}
+
+}  // namespace
 
 int command_triangulate(int argc, char** argv) {
   std::string output = "-";
@@ -74,6 +134,14 @@ int command_triangulate(int argc, char** argv) {
     throw io::Vtk_unsupported(io::file_name(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
                               " holds points of dimension " + std::to_string(table.dimension) +
                               " (write a plain simplex list instead)");
+  // Said before the work, which may take minutes: cospherical points are
+  // gift wrapping's worst case (every search proves one sphere empty).
+  constexpr std::size_t quadratic_warning_points = 5000;
+  if (options.engine == Engine::dewall && table.size() >= quadratic_warning_points && on_one_sphere(table))
+    std::fprintf(stderr,
+                 "dewall: warning: the points of %s lie on one sphere, where the paper's algorithm (--engine dewall) "
+                 "takes quadratic time; --engine auto hands over to the incremental construction there\n",
+                 input_name(input).c_str());
   Run run;
   // Streaming: the output is open before the triangulation starts, and
   // complete (renamed into place) only once it ends.

@@ -42,6 +42,12 @@ bool is_integer_token(std::string_view token) {
          std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
 }
 
+/// True when `token` is written as a whole number (decimal digits) too large
+/// for a count: the value is of the right kind, and the message says so.
+bool is_too_large_integer(std::string_view token) {
+  return token.size() > 15 && std::all_of(token.begin(), token.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
 /// \throws Parse_error unless `d` is a whole, supported dimension; `shown` is how
 /// the message writes it.
 void check_dimension(double d, std::string_view shown, const std::string& name, std::size_t line_no) {
@@ -105,6 +111,8 @@ Point_table read_points(std::istream& in, const std::string& name, Progress* pro
     if (count_tokens.size() != 1)
       throw Parse_error(where(name, second_no) + "expected the point count alone on the line after rbox's dimension line, found " +
                         quoted(detail::without_comment(second)));
+    if (is_too_large_integer(count_tokens[0]))
+      throw Parse_error(where(name, second_no) + "point count " + quoted(count_tokens[0]) + " is too large (at most 10^15)");
     const double count = detail::parse_double(count_tokens[0], name, second_no);
     if (!is_count(count) || !is_integer_token(count_tokens[0]))
       throw Parse_error(where(name, second_no) + "invalid point count " + quoted(count_tokens[0]) +
@@ -159,6 +167,10 @@ Point_table read_node(std::istream& in, const std::string& name, Progress* progr
   // double outside the target type's range has no defined conversion (fuzz_parse).
   const auto header_tokens = tokens_of(line);
   const std::size_t integers = std::min<std::size_t>(header.size(), 4);
+  for (std::size_t i = 0; i < std::min(integers, header_tokens.size()); ++i)
+    if (is_too_large_integer(header_tokens[i]))
+      throw Parse_error(where(name, header_line) + (i == 0 ? "point count " : "header value ") + quoted(header_tokens[i]) +
+                        " is too large (at most 10^15)");
   if (header.size() < 2 || !std::all_of(header.begin(), header.begin() + integers, is_count) ||
       !std::all_of(header_tokens.begin(), header_tokens.begin() + integers, is_integer_token))
     throw Parse_error(where(name, header_line) + "expected a .node header '<count> <dimension> <#attributes> <markers>'");

@@ -35,6 +35,24 @@ std::vector<std::uint64_t> parse_indices(std::string_view line, const std::strin
   return values;
 }
 
+/// The whole numbers of an .ele header: a count, the vertices per simplex,
+/// the attributes; messages call them what they are, not vertex indices.
+std::vector<std::uint64_t> parse_header(std::string_view line, const std::string& name, std::size_t line_no) {
+  std::vector<std::uint64_t> values;
+  detail::for_each_token(detail::without_comment(line), [&](std::string_view token) {
+    const char* what = values.empty() ? "simplex count " : values.size() == 1 ? "vertices per simplex " : "header value ";
+    std::uint64_t v = 0;
+    for (char c : token) {
+      if (!std::isdigit(static_cast<unsigned char>(c)))
+        throw Parse_error(where(name, line_no) + what + quoted(token) + " is not a non-negative integer");
+      v = v * 10 + static_cast<std::uint64_t>(c - '0');
+      if (v > UINT32_MAX) throw Parse_error(where(name, line_no) + what + quoted(token) + " is too large (at most 2^32 - 1)");
+    }
+    values.push_back(v);
+  });
+  return values;
+}
+
 void check_dimension(int dimension, const std::string& name) {
   if (!is_supported_dimension(dimension))
     throw Parse_error(name + ": dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
@@ -102,7 +120,7 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
   detail::Line_source source(in);
   std::string line;
   std::vector<std::uint64_t> header;
-  while (header.empty() && source.next(line)) header = parse_indices(line, name, source.number());
+  while (header.empty() && source.next(line)) header = parse_header(line, name, source.number());
   const std::size_t line_no = source.number();
   if (header.size() < 2)
     throw Parse_error(where(name, line_no) + "expected an .ele header '<count> <vertices per simplex> <#attributes>'");

@@ -60,7 +60,7 @@ inline bool is_number(std::string_view token) {
 /// `token` as a complete decimal number (strtod syntax: NaN and infinities
 /// included; the triangulator rejects them with the point's index).
 /// \throws Parse_error at `name`:`line_no` for anything else or a value out of
-/// the range of double.
+/// the range of double (too large, or so small that it would round to 0).
 inline double parse_double(std::string_view token_view, const std::string& name, std::size_t line_no) {
   const std::string token(token_view);
   char* end = nullptr;
@@ -69,6 +69,9 @@ inline double parse_double(std::string_view token_view, const std::string& name,
   if (end != token.c_str() + token.size()) throw Parse_error(where(name, line_no) + quoted(token) + " is not a number");
   if (errno == ERANGE && std::isinf(v))
     throw Parse_error(where(name, line_no) + quoted(token) + " is out of the range of double");
+  // Too small is out of range too: 1e-400 is not 0 (a subnormal result is a double, and kept).
+  if (errno == ERANGE && v == 0)
+    throw Parse_error(where(name, line_no) + quoted(token) + " is out of the range of double (it would round to 0)");
   return v;
 }
 

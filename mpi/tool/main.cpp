@@ -17,8 +17,9 @@
 // ranks' (with regions: region by region, each's ranks in order; the same
 // bytes on every run with R ranks). .dwsx indices are 4 bytes, 8 beyond
 // 2^32 − 2 points (or with --index-bytes 8). --sorted: rank 0 gathers
-// the sorted lists, merges and writes them (the same bytes for every R; also
-// the way to a target written in place, a pipe or standard output).
+// the sorted lists, merges and writes them (the same bytes for every R). A
+// target written in place (a pipe, standard output) is gathered and written
+// by rank 0 too, in the ranks' order unless --sorted.
 // --per-rank: one file per rank. Errors: every rank learns the lowest failing
 // rank's error and ends with it; rank 0 prints it. Exit 1: the points cannot
 // be triangulated (a non-finite coordinate, too few distinct points, not
@@ -49,6 +50,7 @@
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/dimensions.hpp"
+#include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
@@ -107,6 +109,11 @@ Arguments parse(int argc, char** argv) {
   std::vector<std::string> a(argv + 1, argv + argc);
   if (a.empty()) throw Usage_error("missing command");
   if (a[0] == "--help" || a[0] == "-h") throw Usage_error("");
+  if (a[0] == "help") {  // dewall-mpi help [triangulate], as dewall's
+    if (a.size() > 2) throw Usage_error("unexpected argument '" + a[2] + "'");
+    if (a.size() == 2 && a[1] != "triangulate") throw Usage_error("unknown command '" + a[1] + "' (the one command: triangulate)");
+    throw Usage_error("");
+  }
   if (a[0] != "triangulate") throw Usage_error("unknown command '" + a[0] + "' (the one command: triangulate)");
   Arguments r;
   for (std::size_t i = 1; i < a.size(); ++i) {
@@ -149,6 +156,7 @@ Arguments parse(int argc, char** argv) {
   if (r.output.empty()) throw Usage_error("missing -o OUT");
   if (dewall::io::is_vtk_path(r.output)) throw Usage_error("VTK output needs every point on one rank; write .dwsx");
   if (r.sorted && r.per_rank) throw Usage_error("--sorted and --per-rank exclude each other");
+  if (r.per_rank && r.output == "-") throw Usage_error("--per-rank writes one file per rank: -o names them, not '-'");
   return r;
 }
 
@@ -242,6 +250,7 @@ Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
     if (rc != MPI_SUCCESS) throw File_error(name + ": cannot stat: " + mpi_error_text(rc));
     const auto file_size = static_cast<std::uint64_t>(length);
     unsigned char h[dewall::io::binary_points_header_size];
+    if (file_size == 0) throw File_error(name + ": no points");  // dewall's message for an empty input
     if (file_size < sizeof h)
       throw File_error(name + ": truncated: the header needs 24 bytes, the file has " + std::to_string(file_size));
     MPI_Status status;
@@ -261,6 +270,7 @@ Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
                        dewall::io::dimension_range());
     if (flags != 0) throw File_error(name + ": unknown flags " + std::to_string(flags));
     if (count > (std::uint64_t{1} << 58) / dimension) throw File_error(name + ": impossible point count");
+    if (count == 0 && file_size == sizeof h) throw File_error(name + ": no points");  // dewall's message
     const std::uint64_t expected = dewall::io::binary_points_file_size(count, static_cast<int>(dimension));
     const std::string announced = std::to_string(count) + " points of dimension " + std::to_string(dimension);
     if (file_size < expected)
@@ -287,14 +297,10 @@ Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
 enum class Format { binary, ele, plain };
 
 Format format_of(const std::string& path) {
-  const auto ends = [&](const char* e) {
-    const std::size_t n = std::strlen(e);
-    if (path.size() < n) return false;
-    for (std::size_t i = 0; i < n; ++i)
-      if (std::tolower(static_cast<unsigned char>(path[path.size() - n + i])) != e[i]) return false;
-    return true;
-  };
-  return ends(".dwsx") ? Format::binary : ends(".ele") ? Format::ele : Format::plain;
+  const auto named = dewall::io::format_named_by(path);
+  return named == dewall::io::Named_format::binary_simplices ? Format::binary
+         : named == dewall::io::Named_format::tetgen_ele     ? Format::ele
+                                                             : Format::plain;
 }
 
 /// The file's header: .dwsx's (with the count and the index width) or .ele's;
@@ -682,13 +688,20 @@ int run(int argc, char** argv, int rank, int size) {
   try {
     args = parse(argc, argv);  // every rank parses the same arguments: the same outcome, no communication
   } catch (const Usage_error& e) {
+    // A usage error is one line and where the help is, as dewall's; the help itself goes to stdout.
     if (rank == 0) {
-      if (*e.what()) std::fprintf(stderr, "dewall-mpi: %s\n\n", e.what());
-      std::fputs(usage_text, *e.what() ? stderr : stdout);
+      if (*e.what()) std::fprintf(stderr, "dewall-mpi: %s\nrun 'dewall-mpi help' for the usage\n", e.what());
+      else std::fputs(usage_text, stdout);
     }
     return *e.what() ? 2 : 0;
   }
   try {
+    // Checked before any work, as dewall checks them: a name that says a
+    // point format, and an output that would replace the input.
+    if (args.output != "-") {
+      dewall::io::check_simplices_output_name(args.output);
+      dewall::io::check_output_is_not_input(args.output, args.input);
+    }
     Share share;
     const double t = MPI_Wtime();
     share = read_share(MPI_COMM_WORLD, args.input, rank, size);

@@ -8,6 +8,8 @@
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 #include <set>
 #include <stdexcept>
@@ -209,4 +211,52 @@ TEST_CASE("newcomer: certify says 'no simplices' and lists each violation once",
   // Each violation's line once: the header names none.
   const std::string first = all.out.substr(all.out.find('\n') + 1, all.out.find('\n', all.out.find('\n') + 1) - all.out.find('\n') - 1);
   CHECK(all.out.find(first.substr(2)) == all.out.rfind(first.substr(2)));
+}
+
+TEST_CASE("newcomer: the README's example prints what the tool prints", "[cli][newcomer][docs]") {
+  std::ifstream in(std::string(DEWALL_SOURCE_DIR) + "/README.md");
+  const std::string readme{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string command = "$ printf '0 0\\n1 0\\n0 1\\n1 1\\n' | dewall triangulate -\n";
+  const auto at = readme.find(command);
+  REQUIRE(at != std::string::npos);
+  const auto from = at + command.size();
+  const std::string shown = readme.substr(from, readme.find("$ ", from) - from);
+  const auto cli = fresh("newcomer_test_readme");
+  const auto r = cli("triangulate -", "printf '0 0\\n1 0\\n0 1\\n1 1\\n' | ");
+  CHECK(r.status == 0);
+  CHECK(r.out == shown);
+}
+
+TEST_CASE("newcomer: values of the right kind but too large say so", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_too_large");
+  for (const std::string& run : {std::string("generate uniform 1e20"), std::string("generate uniform 1e400"),
+                                 std::string("generate uniform 10 --dim 99999999999999999999")}) {
+    const auto r = cli(run);
+    INFO(run << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("is too large") != std::string::npos);
+  }
+  const auto rbox = cli.with_stdin("triangulate -", "3\n99999999999999999\n0 0 0\n");
+  CHECK(rbox.status == 2);
+  CHECK(rbox.err.find("point count '99999999999999999' is too large") != std::string::npos);
+  cli.write("p.node", "4 2 0 0\n0 0 0\n1 1 0\n2 0 1\n3 1 1\n");
+  cli.write("big.ele", "99999999999 3 0\n");
+  const auto ele = cli("certify p.node big.ele");
+  CHECK(ele.status == 2);
+  CHECK(ele.err.find("simplex count '99999999999' is too large") != std::string::npos);
+  // Too small is out of range as too large is, never silently 0.
+  const auto tiny = cli.with_stdin("triangulate -", "1e-400 0\n1 0\n0 1\n");
+  CHECK(tiny.status == 2);
+  CHECK(tiny.err.find("'1e-400' is out of the range of double") != std::string::npos);
+}
+
+TEST_CASE("newcomer: --engine dewall on points on one sphere warns before the work", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_sphere_warning");
+  REQUIRE(cli("generate sphere 5000 --dim 2 --seed 1 -q -o circle.txt").status == 0);
+  REQUIRE(cli("generate uniform 5000 --dim 2 --seed 1 -q -o square.txt").status == 0);
+  const auto circle = cli("triangulate circle.txt --engine dewall -o t.txt");
+  CHECK(circle.status == 0);
+  CHECK(circle.err.find("lie on one sphere") != std::string::npos);
+  CHECK(cli("triangulate circle.txt -o t.txt").err.empty());  // auto: nothing to warn about
+  CHECK(cli("triangulate square.txt --engine dewall -o t.txt").err.empty());
 }

@@ -9,7 +9,9 @@
 #   * 8-byte .dwsx indices (--index-bytes 8): canonical;
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
-#   * no -o: exit 2, the usage once;
+#   * no -o: exit 2, one line and a pointer to the help; help, help triangulate;
+#   * --per-rank to '-', names that say a point format, -o the input: refused;
+#   * an empty input: dewall's message and status;
 #   * a rank that exits early: mpiexec ends the job (no hang: ctest's timeout);
 #   * after every failure an old output file is untouched.
 # usage: test_mpi_tool.sh MPIEXEC NUMPROC_FLAG DEWALL_MPI DEWALL
@@ -144,7 +146,38 @@ run 2 triangulate missing.dwpt -o old.txt
 expect_error 2 "dewall-mpi: missing.dwpt: cannot open file" "a missing file"
 
 run 3 triangulate u3.dwpt
-expect_error 2 "^usage: mpirun -n R dewall-mpi triangulate" "no output file"
+expect_error 2 "^dewall-mpi: missing -o OUT$" "no output file"
+grep -q "run 'dewall-mpi help'" run.log || fail "no output file: no pointer to the help"
+grep -q "^usage:" run.log && fail "no output file: the whole usage printed, not one line and a pointer"
+
+run 2 triangulate u3.dwpt --per-rank -o -
+expect_error 2 "^dewall-mpi: --per-rank writes one file per rank" "--per-rank to standard output"
+
+: >empty.dwpt
+run 2 triangulate empty.dwpt -o old.txt
+mpi_message=$(grep "^dewall-mpi:" run.log | sed 's/^dewall-mpi: //')
+"$dewall" triangulate empty.dwpt >/dev/null 2>dewall.log
+dewall_status=$?
+[ "$status" -eq 2 ] && [ "$dewall_status" -eq 2 ] || fail "an empty input: exit $status, dewall's $dewall_status"
+[ "$mpi_message" = "$(sed 's/^dewall: //' dewall.log)" ] || fail "an empty input: '$mpi_message', dewall says '$(cat dewall.log)'"
+rm -f empty.dwpt dewall.log
+
+for name in old.dwpt old.NODE; do
+  run 2 triangulate u3.dwpt -o "$name"
+  [ "$status" -eq 2 ] && grep -q "the name says" run.log || { fail "-o $name: not refused"; cat run.log >&2; }
+  [ ! -e "$name" ] || fail "-o $name: created"
+done
+cp u3.dwpt u3.bin
+run 2 triangulate u3.bin -o u3.bin
+[ "$status" -eq 2 ] && grep -q "the output is the input" run.log || { fail "-o the input: not refused"; cat run.log >&2; }
+cmp -s u3.dwpt u3.bin || fail "-o the input: the input was replaced"
+rm -f u3.bin
+
+for args in "help" "help triangulate" "--help"; do
+  "$mpiexec" "$np" 1 "$tool" $args >help.log 2>&1
+  [ $? -eq 0 ] && grep -q "^usage: mpirun -n R dewall-mpi triangulate" help.log || fail "dewall-mpi $args: no usage"
+done
+rm -f help.log
 
 # A rank that exits early (the third process of the job is `false`: it ends
 # before MPI_Init): mpiexec ends the job, no rank hangs, old.txt survives.
