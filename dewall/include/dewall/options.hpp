@@ -147,7 +147,7 @@ struct Options {
 };
 
 /// The bounds of the default region size (Options::region_points); the CLI's
-/// help prints them, and a test checks README.md against them.
+/// help prints them, and a test checks docs/cli.md against them.
 inline constexpr std::size_t smallest_default_region = 16384;
 inline constexpr std::size_t largest_default_region = 262144;
 inline constexpr std::size_t largest_default_streaming_region = 32768;
