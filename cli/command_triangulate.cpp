@@ -121,7 +121,7 @@ int command_triangulate(int argc, char** argv) {
   }
   if (stream && !io::can_stream_simplices(output))
     throw Usage_error("--stream writes the plain simplex list or .dwsx, not " + io::quoted(output) +
-                      " (.ele and .vtk files start with the count of simplices)");
+                      " (.ele, .vtk and .msh files start with the count of simplices)");
   options.stream = stream;
   // Outputs that would lose data or could not be read back fail now, not after the work.
   io::check_simplices_output_name(output);
@@ -130,10 +130,7 @@ int command_triangulate(int argc, char** argv) {
   io::Progress progress(!quiet && io::stderr_is_terminal());
   auto table = io::read_points_file(input, &progress);
   // Refuse an impossible output before the (possibly long) triangulation.
-  if (io::is_vtk_path(output) && table.dimension > 3)
-    throw io::Vtk_unsupported(io::file_name(output) + ": VTK output supports 2D and 3D only; " + input_name(input) +
-                              " holds points of dimension " + std::to_string(table.dimension) +
-                              " (write a plain simplex list instead)");
+  io::check_triangulation_output(output, table.dimension);
   // Said before the work, which may take minutes: cospherical points are
   // gift wrapping's worst case (every search proves one sphere empty).
   constexpr std::size_t quadratic_warning_points = 5000;
@@ -150,9 +147,9 @@ int command_triangulate(int argc, char** argv) {
   const Simplex_rows_sink write_rows = [&](std::span<const std::uint32_t> rows) { writer->write(rows); };
   try {
     progress.phase("triangulating " + std::to_string(table.size()) + " points");
-    // Only a VTK file writes the points again: otherwise the table's copy
+    // Only VTK and gmsh files write the points again: otherwise the table's copy
     // goes before the triangulation's peak (10^6 points: 24 MB).
-    run = triangulate_any(table, options, stream ? &write_rows : nullptr, io::is_vtk_path(output));
+    run = triangulate_any(table, options, stream ? &write_rows : nullptr, io::triangulation_needs_points(output));
     progress.finish();
   } catch (const Invalid_input& e) {
     progress.finish();
@@ -176,14 +173,15 @@ const std::string usage =
     "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet|-q]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
-    "      the binary .dwpt format or the POINTS of a legacy VTK file (the binary\n"
-    "      and VTK formats are recognised by their first bytes).\n"
+    "      the binary .dwpt format, the POINTS of a legacy VTK file, or the vertices\n"
+    "      of a PLY, OFF or OBJ mesh (recognised by their first bytes, or by name).\n"
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, the\n"
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"
-    "      legacy VTK for ParaView when it ends in .vtk (2D and 3D); extensions in\n"
-    "      any case. A name that says a point format (.dwpt, .node) or one dewall\n"
-    "      does not write (.ply, .msh, ...) is refused, and so is OUTPUT = INPUT.\n"
+    "      legacy VTK for ParaView when it ends in .vtk, gmsh's format when it ends\n"
+    "      in .msh (both 2D and 3D); extensions in any case. A name that says a\n"
+    "      point format (.dwpt, .node) or one dewall does not write (.ply, .stl, ...)\n"
+    "      is refused, and so is OUTPUT = INPUT.\n"
     "      --engine: the construction; the simplices are the same with each.\n"
     "      hybrid builds DeWall's walls down to regions of n/4 points (" + count(smallest_default_region) + " to\n"
     "      " + count(largest_default_region) + ") and triangulates each region with an incremental construction\n"

@@ -5,7 +5,8 @@
 // Input: [reader] [dimension, for simplex lists] then the file's bytes.
 // Readers: plain text / rbox (io::read_points), TetGen .node (io::read_node),
 // binary .dwpt (io::read_binary_points), legacy VTK (io::read_vtk_points and,
-// on the same bytes, io::read_vtk_simplices),
+// on the same bytes, io::read_vtk_simplices), and every input through the
+// mesh readers (PLY, OFF, OBJ vertices; gmsh nodes and elements),
 // simplex lists: plain or Qhull (io::read_simplices) and TetGen .ele
 // (io::read_ele). The readers added after this harness are compiled in when
 // their headers exist.
@@ -34,6 +35,10 @@
 #if __has_include("dewall/io/vtk.hpp")
 #define DEWALL_FUZZ_VTK 1
 #include "dewall/io/vtk.hpp"
+#endif
+#if __has_include("dewall/io/mesh_formats.hpp")
+#define DEWALL_FUZZ_MESH 1
+#include "dewall/io/mesh_formats.hpp"
 #endif
 #if __has_include("dewall/io/simplex_reader.hpp")
 #define DEWALL_FUZZ_SIMPLICES 1
@@ -151,5 +156,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   } catch (const Parse_error&) {
     // The one allowed failure.
   }
+#ifdef DEWALL_FUZZ_MESH
+  // Every input also through the mesh readers (their key words are short, so
+  // the corpus reaches them), each on its own copy of the bytes.
+  const auto each_mesh_reader = [&](auto read) {
+    std::istringstream copy(bytes, std::ios::binary);
+    try {
+      read(copy);
+    } catch (const Parse_error&) {
+    }
+  };
+  each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_ply_points(s, "fuzz.ply")); });
+  each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_off_points(s, "fuzz.off")); });
+  each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_obj_points(s, "fuzz.obj")); });
+  each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_msh_points(s, "fuzz.msh")); });
+  each_mesh_reader([&](std::istream& s) {
+    if (dimension > 3) return;
+    const auto t = dewall::io::read_msh_simplices(s, "fuzz.msh", dimension);
+    DEWALL_FUZZ_CHECK(t.indices.size() == t.size() * static_cast<std::size_t>(dimension + 1));
+  });
+#endif
   return 0;
 }

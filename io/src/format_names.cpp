@@ -26,11 +26,11 @@ constexpr std::array<Extension, 15> extensions = {{
     {".node", Named_format::tetgen_node, "TetGen points (.node)"},
     {".ele", Named_format::tetgen_ele, "TetGen simplices (.ele)"},
     {".vtk", Named_format::vtk, "legacy VTK"},
-    {".ply", Named_format::foreign, "a PLY mesh"},
-    {".off", Named_format::foreign, "an OFF mesh"},
-    {".obj", Named_format::foreign, "a Wavefront OBJ mesh"},
+    {".ply", Named_format::ply, "a PLY mesh"},
+    {".off", Named_format::off, "an OFF mesh"},
+    {".obj", Named_format::obj, "a Wavefront OBJ mesh"},
     {".stl", Named_format::foreign, "an STL mesh"},
-    {".msh", Named_format::foreign, "a gmsh mesh"},
+    {".msh", Named_format::gmsh, "a gmsh mesh"},
     {".pcd", Named_format::foreign, "a PCL point cloud"},
     {".vtu", Named_format::foreign, "an XML VTK grid"},
     {".vtp", Named_format::foreign, "an XML VTK polydata"},
@@ -44,11 +44,15 @@ const Extension* extension_of(std::string_view path) {
   return e == extensions.end() ? nullptr : &*e;
 }
 
+/// True for the formats dewall reads but never writes.
+bool read_only(Named_format f) {
+  return f == Named_format::ply || f == Named_format::off || f == Named_format::obj || f == Named_format::foreign;
+}
+
 /// The refusal of `path` (whose extension is `e`) for writing `what`; `use` lists the names that work.
 Write_error wrong_name(const std::string& path, const Extension& e, const char* what, const char* use) {
   return Write_error(file_name(path) + ": the name says " + std::string(e.description) + ", but " + what +
-                     (e.format == Named_format::foreign ? " (dewall does not write that format)" : "") + ": name it " +
-                     use);
+                     (read_only(e.format) ? " (dewall does not write that format)" : "") + ": name it " + use);
 }
 
 /// The device and inode `path` names ("-": the descriptor `standard`), when it exists.
@@ -80,7 +84,7 @@ void check_points_output_name(const std::string& path) {
   const Extension* e = extension_of(path);
   if (!e) return;
   if (e->format == Named_format::binary_simplices || e->format == Named_format::tetgen_ele ||
-      e->format == Named_format::foreign)
+      e->format == Named_format::gmsh || read_only(e->format))
     throw wrong_name(path, *e, "points are written here",
                      ".dwpt (binary), .node (TetGen), .vtk (VTK) or anything else for plain text (e.g. .txt)");
 }
@@ -88,10 +92,10 @@ void check_points_output_name(const std::string& path) {
 void check_simplices_output_name(const std::string& path) {
   const Extension* e = extension_of(path);
   if (!e) return;
-  if (e->format == Named_format::binary_points || e->format == Named_format::tetgen_node ||
-      e->format == Named_format::foreign)
+  if (e->format == Named_format::binary_points || e->format == Named_format::tetgen_node || read_only(e->format))
     throw wrong_name(path, *e, "simplices are written here",
-                     ".dwsx (binary), .ele (TetGen), .vtk (VTK) or anything else for the plain list (e.g. .txt)");
+                     ".dwsx (binary), .ele (TetGen), .vtk (VTK), .msh (gmsh) or anything else for the plain list "
+                     "(e.g. .txt)");
 }
 
 void check_output_is_not_input(const std::string& output, const std::string& input) {

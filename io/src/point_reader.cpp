@@ -13,6 +13,7 @@
 #include "dewall/io/format_names.hpp"
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
+#include "dewall/io/mesh_formats.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/vtk.hpp"
 #include "tetgen_header.hpp"
@@ -219,8 +220,17 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
     throw Not_points_error(name + ": the name says TetGen simplices (.ele), not points");
   const bool node = !vtk && (named == Named_format::tetgen_node ||
                              detail::looks_like_tetgen(head, head.size() < 4096, detail::Tetgen_file::node));
+  // Mesh files by their key word, or by a name that says so (the reader then names what is wrong).
+  const bool ply = !vtk && (is_ply_header(head) || named == Named_format::ply);
+  const bool off = !vtk && !ply && (is_off_header(head) || named == Named_format::off);
+  const bool obj = !vtk && !ply && !off && (named == Named_format::obj || (!node && is_obj_header(head)));
+  const bool msh = !vtk && (is_msh_header(head) || named == Named_format::gmsh);
   if (progress) progress->phase("reading " + name, file.size());
-  const Point_table t = vtk ? read_vtk_points(file.stream(), name)
+  const Point_table t = vtk    ? read_vtk_points(file.stream(), name)
+                        : msh  ? read_msh_points(file.stream(), name)
+                        : ply  ? read_ply_points(file.stream(), name)
+                        : off  ? read_off_points(file.stream(), name)
+                        : obj  ? read_obj_points(file.stream(), name)
                         : node ? read_node(file.stream(), name, progress)
                                : read_points(file.stream(), name, progress);
   if (progress) progress->finish();

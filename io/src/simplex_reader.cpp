@@ -7,6 +7,7 @@
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/format_names.hpp"
+#include "dewall/io/mesh_formats.hpp"
 #include "dewall/io/vtk.hpp"
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/input_file.hpp"
@@ -166,6 +167,12 @@ Simplex_list read_simplices_file(const std::string& path, int dimension, std::si
     return list;
   }
   const Named_format named = format_named_by(path);
+  if (is_msh_header(head) || named == Named_format::gmsh) {
+    Simplex_list list;
+    list.format = "gmsh";
+    list.table = read_msh_simplices(file.stream(), name, dimension);
+    return list;
+  }
   if (named == Named_format::tetgen_node)
     throw Not_simplices_error(name + ": the name says TetGen points (.node), not simplices");
   const bool ele = named == Named_format::tetgen_ele ||

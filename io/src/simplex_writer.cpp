@@ -12,6 +12,7 @@
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/format_names.hpp"
+#include "dewall/io/mesh_formats.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
@@ -85,12 +86,14 @@ void write_simplices_file(const std::string& path, const Simplex_table& t, std::
 
 bool is_vtk_path(const std::string& path) { return has_extension(path, ".vtk"); }
 
-bool can_stream_simplices(const std::string& path) { return !is_vtk_path(path) && !has_extension(path, ".ele"); }
+bool can_stream_simplices(const std::string& path) {
+  return !triangulation_needs_points(path) && !has_extension(path, ".ele");
+}
 
 Simplex_stream_writer::Simplex_stream_writer(const std::string& path, int vertices_per_simplex)
     : binary_(has_extension(path, ".dwsx")), k_(static_cast<std::size_t>(vertices_per_simplex)) {
   if (!can_stream_simplices(path))
-    throw std::invalid_argument(shown(path) + ": .ele and .vtk files start with the count; they cannot be streamed");
+    throw std::invalid_argument(shown(path) + ": .ele, .vtk and .msh files start with the count; they cannot be streamed");
   check_simplices_output_name(path);
   file_ = std::make_unique<Output_file>(path);
   if (binary_) write_binary_simplices_header(file_->stream(), vertices_per_simplex - 1, binary_simplices_unknown_count);
@@ -121,15 +124,28 @@ void Simplex_stream_writer::commit() {
   file_->commit();
 }
 
+bool triangulation_needs_points(const std::string& path) {
+  const Named_format f = format_named_by(path);
+  return f == Named_format::vtk || f == Named_format::gmsh;
+}
+
+void check_triangulation_output(const std::string& path, int dimension) {
+  check_simplices_output_name(path);
+  if (triangulation_needs_points(path) && dimension != 2 && dimension != 3)
+    throw Vtk_unsupported(shown(path) + ": " + (is_vtk_path(path) ? "VTK" : "gmsh") +
+                          " output supports 2D and 3D only; these points are in dimension " + std::to_string(dimension) +
+                          " (write a plain simplex list instead)");
+}
+
 void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
                               Progress* progress) {
-  check_simplices_output_name(path);
+  check_triangulation_output(path, points.dimension);  // refused before anything is created
   progress = unless_terminal_output(path, progress);
-  if (!is_vtk_path(path)) return write_simplices_file(path, t, points.first_index, progress);
-  if (points.dimension != 2 && points.dimension != 3)  // refuse before creating anything
-    throw Vtk_unsupported(shown(path) + ": VTK output supports 2D and 3D only; these points are in dimension " +
-                          std::to_string(points.dimension) + " (write a plain simplex list instead)");
-  write_output_file(path, [&](std::ostream& out) { write_vtk_triangulation(out, points, t, progress); });
+  if (!triangulation_needs_points(path)) return write_simplices_file(path, t, points.first_index, progress);
+  if (is_vtk_path(path))
+    write_output_file(path, [&](std::ostream& out) { write_vtk_triangulation(out, points, t, progress); });
+  else
+    write_output_file(path, [&](std::ostream& out) { write_msh_triangulation(out, points, t); });
 }
 
 void write_points_text(std::ostream& out, const Point_table& t, Progress* progress) {

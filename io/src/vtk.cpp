@@ -17,6 +17,7 @@
 
 #include "dewall/io/progress.hpp"
 #include "text_lines.hpp"
+#include "xyz_table.hpp"
 
 namespace dewall::io {
 namespace {
@@ -349,21 +350,7 @@ std::size_t section_count(const std::string& token, const std::string& name, con
 
 Point_table read_vtk_points(std::istream& in, const std::string& name) {
   detail::Line_source source(in);
-  auto xyz = read_points_section(in, source, name).xyz;
-  const std::size_t n = xyz.size();
-  // VTK has no 2D point type: a plane drawing stores z = 0. A 3D set with every
-  // z equal to 0 could not be triangulated in E^3 anyway (it is flat).
-  bool flat = true;
-  for (std::size_t i = 2; i < n && flat; i += 3) flat = xyz[i] == 0;
-  Point_table t;
-  t.dimension = flat ? 2 : 3;
-  if (flat) {
-    t.coordinates.reserve(2 * (n / 3));
-    for (std::size_t i = 0; i < n; i += 3) t.coordinates.insert(t.coordinates.end(), {xyz[i], xyz[i + 1]});
-  } else {
-    t.coordinates = std::move(xyz);
-  }
-  return t;
+  return detail::table_from_xyz(read_points_section(in, source, name).xyz);
 }
 
 Simplex_table read_vtk_simplices(std::istream& in, const std::string& name, int dimension) {

@@ -12,6 +12,7 @@
 #include <iterator>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -156,7 +157,7 @@ TEST_CASE("newcomer: what the tool writes it reads back, whatever the case of th
   }
   SECTION("a name that says another format is refused before anything is written") {
     for (const std::string& run : {std::string("triangulate p.txt -o s.dwpt"), std::string("triangulate p.txt -o s.Node"),
-                                   std::string("triangulate p.txt -o s.ply"), std::string("triangulate p.txt --stream -o s.msh"),
+                                   std::string("triangulate p.txt -o s.ply"), std::string("triangulate p.txt --stream -o s.stl"),
                                    std::string("generate uniform 10 -q -o s.ele"), std::string("generate uniform 10 -q -o s.dwsx"),
                                    std::string("generate uniform 10 -q -o s.off")}) {
       const auto r = cli(run);
@@ -259,4 +260,52 @@ TEST_CASE("newcomer: --engine dewall on points on one sphere warns before the wo
   CHECK(circle.err.find("lie on one sphere") != std::string::npos);
   CHECK(cli("triangulate circle.txt -o t.txt").err.empty());  // auto: nothing to warn about
   CHECK(cli("triangulate square.txt --engine dewall -o t.txt").err.empty());
+}
+
+TEST_CASE("newcomer: PLY, OFF and OBJ vertices are points; a triangulation goes out as gmsh", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_mesh_files");
+  REQUIRE(cli("generate uniform 120 --seed 8 -q -o p.txt").status == 0);
+  const std::string points = slurp(cli.path("p.txt"));
+  const auto expected = cli("triangulate p.txt");
+  REQUIRE(expected.status == 0);
+  std::string ply = "ply\nformat ascii 1.0\ncomment by hand\nelement vertex 120\nproperty double x\nproperty double y\n"
+                    "property double z\nproperty uchar red\nelement face 0\nproperty list uchar int vertex_indices\n"
+                    "end_header\n";
+  std::string off = "OFF\n120 0 0\n", obj = "# points\no cloud\n", binary = "ply\nformat binary_little_endian 1.0\n"
+                                                                          "element vertex 120\nproperty double x\n"
+                                                                          "property double y\nproperty double z\nend_header\n";
+  for (std::size_t at = 0; at < points.size();) {
+    const std::string row = points.substr(at, points.find('\n', at) - at);
+    at = points.find('\n', at) + 1;
+    ply += row + " 200\n", off += row + "\n", obj += "v " + row + "\n";
+    std::istringstream values(row);
+    for (double v; values >> v;) binary.append(reinterpret_cast<const char*>(&v), sizeof v);  // this host is little-endian
+  }
+  cli.write("p.ply", ply), cli.write("p.off", off), cli.write("cloud.data", obj), cli.write("b.ply", binary);
+  CHECK(cli("triangulate p.ply").out == expected.out);
+  CHECK(cli("triangulate b.ply").out == expected.out);
+  CHECK(cli("triangulate -", "cat p.off | ").out == expected.out);  // the key word, not the name
+  CHECK(cli("triangulate cloud.data").out == expected.out);        // OBJ by its statements
+  // A mesh file of another kind is said to be wrong, naming what.
+  cli.write("bad.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n0\n1\n");
+  const auto bad = cli("triangulate bad.ply");
+  CHECK(bad.status == 2);
+  CHECK(bad.err.find("no x and y properties") != std::string::npos);
+  const auto cut = cli("triangulate -", "head -c 700 b.ply | ");
+  CHECK(cut.status == 2);
+  CHECK(cut.err.find("truncated") != std::string::npos);
+
+  // gmsh: written, read back by certify and draw, and gmsh 4.1 as gmsh writes it.
+  REQUIRE(cli("triangulate p.ply -o mesh.MSH").status == 0);
+  CHECK(slurp(cli.path("mesh.MSH")).rfind("$MeshFormat\n2.2 0 8\n", 0) == 0);
+  CHECK(cli("certify --canonical p.txt mesh.MSH").status == 0);
+  CHECK(cli("certify --canonical mesh.MSH mesh.MSH").status == 0);
+  CHECK(cli("generate uniform 10 -q -o points.msh").status == 2);  // points are not written as a mesh
+  cli.write("g41.msh", "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n2 4 1 4\n2 1 0 2\n1\n2\n0 0 0\n1 0 0\n"
+                       "2 2 0 2\n3\n4\n0 1 0\n1 1 0\n$EndNodes\n$Elements\n2 3 1 3\n1 1 1 1\n1 1 2\n"
+                       "2 1 2 2\n2 1 2 3\n3 2 4 3\n$EndElements\n");
+  const auto gmsh = cli("certify --canonical g41.msh g41.msh");
+  CHECK(gmsh.status == 0);
+  CHECK(gmsh.out.find("(2 simplices, 4 points") != std::string::npos);
+  CHECK(cli("draw g41.msh g41.msh -o g41.svg").status == 0);
 }

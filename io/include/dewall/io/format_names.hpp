@@ -5,7 +5,7 @@
 // and its name after; writers choose by the name alone, so a name that says
 // one format must never receive another: an output whose extension names a
 // format that does not hold what is written (points into ".dwsx", simplices
-// into ".dwpt" or ".node") or a format dewall does not write (".ply", ".msh")
+// into ".dwpt" or ".node") or a format dewall does not write (".ply", ".stl")
 // is refused before anything is computed or created.
 #pragma once
 
@@ -22,7 +22,11 @@ enum class Named_format {
   tetgen_node,       ///< .node (points)
   tetgen_ele,        ///< .ele (simplices)
   vtk,               ///< .vtk (points, or points and simplices)
-  foreign,           ///< a known format dewall does not write (.ply, .off, .obj, .msh, …)
+  gmsh,              ///< .msh (a triangulation; written, not read)
+  ply,               ///< .ply (points; read, not written)
+  off,               ///< .off (points; read, not written)
+  obj,               ///< .obj (points; read, not written)
+  foreign,           ///< a known format dewall neither reads nor writes (.stl, .pcd, …)
 };
 
 /// True when `path` ends in `extension` (".vtk"), compared in any case.
@@ -31,12 +35,14 @@ bool has_extension(std::string_view path, std::string_view extension);
 /// The format the extension of `path` names ("-" and unknown extensions: unnamed).
 Named_format format_named_by(std::string_view path);
 
-/// \throws Write_error (output_file.hpp) when `path` names a format that does
-/// not hold a point set: .dwsx, .ele, or a foreign one. "-" is always accepted.
+/// \throws Write_error (output_file.hpp) when `path` names a format that
+/// dewall does not write points in: .dwsx, .ele, .msh, .ply, .off, .obj, or a
+/// foreign one. "-" is always accepted.
 void check_points_output_name(const std::string& path);
 
-/// \throws Write_error when `path` names a format that does not hold a
-/// simplex list: .dwpt, .node, or a foreign one. "-" is always accepted.
+/// \throws Write_error when `path` names a format that dewall does not write
+/// simplices in: .dwpt, .node, .ply, .off, .obj, or a foreign one. "-" is
+/// always accepted.
 void check_simplices_output_name(const std::string& path);
 
 /// \throws Write_error when writing `output` would replace the file `input`

@@ -1,5 +1,6 @@
 // Reading point sets: plain text, Qhull's rbox format, TetGen .node, the binary
-// format (binary_points.hpp) and the POINTS of legacy VTK files (vtk.hpp).
+// format (binary_points.hpp), the POINTS of legacy VTK files (vtk.hpp) and the
+// vertices of PLY, OFF and OBJ meshes (mesh_formats.hpp).
 //
 // Plain text: one point per line, coordinates separated by whitespace, `#`
 // starts a comment; the dimension is the number of values on the first data line.
@@ -55,8 +56,10 @@ Point_table read_node(std::istream& in, const std::string& name, Progress* progr
 /// content first: the magic bytes "DWPT" select the binary format, a first line
 /// "# vtk DataFile …" legacy VTK; then by extension (any case): ".node" selects
 /// TetGen's format; then a TetGen .node header and rows recognised in the first
-/// bytes (through a pipe, or under another name) select it too; anything else
-/// is plain text or rbox. `progress`, when given, shows a
+/// bytes (through a pipe, or under another name) select it too; PLY, OFF and
+/// OBJ meshes are read for their vertices and gmsh meshes for their nodes
+/// (mesh_formats.hpp), recognised by their key word or their extension;
+/// anything else is plain text or rbox. `progress`, when given, shows a
 /// "reading" phase (a percentage for files, elapsed time for standard input).
 /// \throws Not_points_error for a file of simplices (magic "DWSX", or a name
 /// ending in .ele); Parse_error for anything unreadable.

@@ -1,6 +1,7 @@
 // Reading simplex lists: the plain list, TetGen .ele, Qhull's `qdelaunay i`,
 // the binary format (binary_simplices.hpp, recognised by its magic bytes) and
-// the cells of legacy VTK files (vtk.hpp, recognised by their first line).
+// the cells of legacy VTK files (vtk.hpp, recognised by their first line) and
+// the triangles or tetrahedra of gmsh meshes (mesh_formats.hpp).
 //
 // Plain list: one simplex per line, its D + 1 zero-based point indices
 // separated by whitespace, any vertex order, any line order; `#` starts a
@@ -36,7 +37,7 @@ class Not_simplices_error : public Parse_error {
 struct Simplex_list {
   Simplex_table table;
   std::vector<std::size_t> lines;  // lines[r]: the 1-based line of row r; empty for binary
-  std::string format;              // "plain", "qhull", "tetgen", "binary" or "vtk"
+  std::string format;              // "plain", "qhull", "tetgen", "binary", "vtk" or "gmsh"
 
   /// Where row r is, for messages: "NAME:LINE", or "NAME" for a binary file.
   std::string where(const std::string& name, std::size_t r) const {
@@ -58,7 +59,8 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
 
 /// Reads a file by path ("-" = standard input), choosing the format by its
 /// content first: the magic bytes 'DWSX' select the binary format, a first
-/// line "# vtk DataFile …" VTK's cells; then the extension ".ele" (any case) or
+/// line "# vtk DataFile …" VTK's cells, "$MeshFormat" (or the extension ".msh")
+/// a gmsh mesh's triangles or tetrahedra; then the extension ".ele" (any case) or
 /// an .ele header recognised in the first bytes TetGen's; anything else is the
 /// plain list or Qhull's. \throws Not_simplices_error for a file of points
 /// (magic 'DWPT', a name ending in .node); Parse_error for anything unreadable.

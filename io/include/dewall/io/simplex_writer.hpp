@@ -1,6 +1,7 @@
 // Writing files: simplices as the plain list (one simplex per line, zero-based
 // input indices separated by single spaces), TetGen .ele, binary (.dwsx,
-// binary_simplices.hpp) or legacy VTK (chosen by extension), and point sets as plain text, binary (.dwpt) or VTK. Every file
+// binary_simplices.hpp), legacy VTK or gmsh (chosen by extension), and point
+// sets as plain text, binary (.dwpt), TetGen .node or VTK. Every file
 // goes through io::Output_file (output_file.hpp): a regular file is written to
 // an exclusive temporary and renamed when complete; devices, FIFOs and
 // standard output are written directly.
@@ -45,16 +46,25 @@ void write_simplices_file(const std::string& path, const Simplex_table& t, std::
                           Progress* progress = nullptr);
 
 /// As write_simplices_file (numbered from points.first_index in .ele), and a
-/// ".vtk" extension writes legacy VTK, which needs the points too (see vtk.hpp). \throws Vtk_unsupported for VTK in
-/// dimension > 3 (before anything is written).
+/// ".vtk" extension writes legacy VTK (vtk.hpp), ".msh" gmsh's format
+/// (mesh_formats.hpp), which need the points too. \throws as
+/// check_triangulation_output, before anything is written.
 void write_triangulation_file(const std::string& path, const Point_table& points, const Simplex_table& t,
                               Progress* progress = nullptr);
+
+/// True when the triangulation file `path` holds the points too (.vtk, .msh).
+bool triangulation_needs_points(const std::string& path);
+
+/// \throws Write_error for a name that says a format without simplices
+/// (format_names.hpp), Vtk_unsupported for VTK or gmsh output of points of
+/// a dimension other than 2 and 3. Commands call it before any work.
+void check_triangulation_output(const std::string& path, int dimension);
 
 /// True when `path` names a legacy VTK file (".vtk", any case).
 bool is_vtk_path(const std::string& path);
 
 /// True when simplices can be written to `path` as they come: the plain list
-/// and .dwsx, not .ele and .vtk (whose headers start with the count).
+/// and .dwsx, not .ele, .vtk and .msh (whose headers start with the count).
 bool can_stream_simplices(const std::string& path);
 
 /// Simplices written to a file as they come (dewall triangulate --stream),
