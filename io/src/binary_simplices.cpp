@@ -27,27 +27,6 @@ void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64
                                static_cast<std::uint32_t>(index_bytes), count});
 }
 
-void write_binary_simplex_indices(std::ostream& out, std::span<const std::uint32_t> indices) {
-  if constexpr (std::endian::native == std::endian::little) {
-    out.write(reinterpret_cast<const char*>(indices.data()), static_cast<std::streamsize>(indices.size() * 4));
-  } else {
-    std::vector<unsigned char> bytes(indices.size() * 4);
-    for (std::size_t i = 0; i < indices.size(); ++i) detail::store_le(bytes.data() + 4 * i, indices[i], 4);
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  }
-}
-
-void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress) {
-  const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  write_binary_simplices_header(out, t.vertices_per_simplex - 1, t.size());
-  for (std::size_t done = 0; done < t.size() && out;) {
-    const std::size_t rows = std::min(chunk_rows, t.size() - done);
-    write_binary_simplex_indices(out, std::span(t.indices).subspan(done * k, rows * k));
-    done += rows;
-    if (progress) progress->advance_to(done);
-  }
-}
-
 Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension) {
   const auto header = detail::read_binary_header(in, name, binary_simplices_magic, "binary simplex file");
   if (header.version != binary_simplices_version)

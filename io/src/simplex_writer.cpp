@@ -6,6 +6,7 @@
 #include <memory>
 #include <ostream>
 #include <span>
+#include <sstream>
 #include <stdexcept>
 #include <unistd.h>
 
@@ -16,6 +17,7 @@
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/progress.hpp"
 #include "dewall/io/quote.hpp"
+#include "dewall/io/simplex_rows.hpp"
 #include "dewall/io/vtk.hpp"
 #include "text_lines.hpp"
 
@@ -35,52 +37,63 @@ std::string shown(const std::string& path) { return path == "-" ? std::string("<
 
 namespace {
 
-/// Appends the plain list's lines for whole rows of k indices.
-void append_plain_lines(std::string& text, std::span<const std::uint32_t> indices, std::size_t k) {
-  char number[16];
-  for (std::size_t i = 0; i < indices.size(); ++i) {
-    const auto r = std::to_chars(number, number + sizeof number, indices[i]);
-    text.append(number, r.ptr);
-    text += (i + 1) % k == 0 ? '\n' : ' ';
+/// Writes `t` in format `f`, header first, a block of rows at a time.
+void write_rows(std::ostream& out, const Simplex_table& t, Simplex_format f, std::size_t first_index,
+                Progress* progress) {
+  const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
+  constexpr std::size_t rows_per_write = 1 << 14;
+  std::string text = simplex_file_header(f, t.vertices_per_simplex - 1, t.size());
+  // .ele rows are numbered, and their vertices shifted, like the .node file's points.
+  const std::uint64_t shift = f == Simplex_format::ele ? first_index : 0;
+  std::uint64_t row = shift;
+  for (std::size_t s = 0; s < t.size() && out; s += rows_per_write) {
+    const std::size_t rows = std::min(rows_per_write, t.size() - s);
+    append_simplex_rows<std::uint32_t>(text, std::span(t.indices).subspan(s * k, rows * k), k, f, row, 4, shift);
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+    text.clear();
+    if (progress) progress->advance_to(s + rows);
   }
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));  // the header of an empty list
 }
 
 }  // namespace
 
-void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress) {
-  const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  constexpr std::size_t rows_per_write = 1 << 14;
-  std::string text;
-  for (std::size_t s = 0; s < t.size() && out; s += rows_per_write) {
-    const std::size_t rows = std::min(rows_per_write, t.size() - s);
-    text.clear();
-    append_plain_lines(text, std::span(t.indices).subspan(s * k, rows * k), k);
-    out.write(text.data(), static_cast<std::streamsize>(text.size()));
-    if (progress) progress->advance_to(s + rows);
+Simplex_format simplex_format_named_by(std::string_view path) {
+  const Named_format f = format_named_by(path);
+  return f == Named_format::binary_simplices ? Simplex_format::binary
+         : f == Named_format::tetgen_ele     ? Simplex_format::ele
+                                             : Simplex_format::plain;
+}
+
+std::string simplex_file_header(Simplex_format f, int dimension, std::uint64_t count, int index_bytes) {
+  if (f == Simplex_format::binary) {
+    std::ostringstream out;
+    write_binary_simplices_header(out, dimension, count, index_bytes);
+    return out.str();
   }
+  if (f == Simplex_format::ele) return std::to_string(count) + ' ' + std::to_string(dimension + 1) + " 0\n";
+  return {};
+}
+
+void write_plain(std::ostream& out, const Simplex_table& t, Progress* progress) {
+  write_rows(out, t, Simplex_format::plain, 0, progress);
 }
 
 void write_ele(std::ostream& out, const Simplex_table& t, std::size_t first_index) {
-  const auto k = static_cast<std::size_t>(t.vertices_per_simplex);
-  out << t.size() << ' ' << k << " 0\n";
-  for (std::size_t s = 0; s < t.size(); ++s) {
-    out << s + first_index;
-    for (std::size_t i = 0; i < k; ++i) out << ' ' << t.indices[s * k + i] + first_index;
-    out << '\n';
-  }
+  write_rows(out, t, Simplex_format::ele, first_index, nullptr);
+}
+
+void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress) {
+  write_rows(out, t, Simplex_format::binary, 0, progress);
 }
 
 void write_simplices_file(const std::string& path, const Simplex_table& t, std::size_t first_index,
                           Progress* progress) {
   check_simplices_output_name(path);
   progress = unless_terminal_output(path, progress);
-  const bool ele = has_extension(path, ".ele"), binary = has_extension(path, ".dwsx");
-  if (progress) progress->phase("writing " + shown(path), ele ? 0 : t.size());
-  write_output_file(path, [&](std::ostream& out) {
-    if (binary) write_binary_simplices(out, t, progress);
-    else if (ele) write_ele(out, t, first_index);
-    else write_plain(out, t, progress);
-  });
+  const Simplex_format f = simplex_format_named_by(path);
+  if (progress) progress->phase("writing " + shown(path), f == Simplex_format::ele ? 0 : t.size());
+  write_output_file(path, [&](std::ostream& out) { write_rows(out, t, f, first_index, progress); });
   if (progress) progress->finish();
 }
 
@@ -91,32 +104,28 @@ bool can_stream_simplices(const std::string& path) {
 }
 
 Simplex_stream_writer::Simplex_stream_writer(const std::string& path, int vertices_per_simplex)
-    : binary_(has_extension(path, ".dwsx")), k_(static_cast<std::size_t>(vertices_per_simplex)) {
+    : format_(simplex_format_named_by(path)), k_(static_cast<std::size_t>(vertices_per_simplex)) {
   if (!can_stream_simplices(path))
     throw std::invalid_argument(shown(path) + ": .ele, .vtk and .msh files start with the count; they cannot be streamed");
   check_simplices_output_name(path);
   file_ = std::make_unique<Output_file>(path);
-  if (binary_) write_binary_simplices_header(file_->stream(), vertices_per_simplex - 1, binary_simplices_unknown_count);
+  text_ = simplex_file_header(format_, vertices_per_simplex - 1, binary_simplices_unknown_count);
+  file_->stream().write(text_.data(), static_cast<std::streamsize>(text_.size()));
 }
 
 Simplex_stream_writer::~Simplex_stream_writer() = default;
 
 void Simplex_stream_writer::write(std::span<const std::uint32_t> indices) {
   std::ostream& out = file_->stream();
-  if (binary_) {
-    write_binary_simplex_indices(out, indices);
-  } else {
-    text_.clear();
-    append_plain_lines(text_, indices, k_);
-    out.write(text_.data(), static_cast<std::streamsize>(text_.size()));
-  }
-  count_ += indices.size() / k_;
+  text_.clear();
+  append_simplex_rows(text_, indices, k_, format_, count_);
+  out.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   // Stop the triangulation at the first failed write (a full disk, a closed pipe).
   if (!out) file_->check();
 }
 
 void Simplex_stream_writer::commit() {
-  if (binary_) {
+  if (format_ == Simplex_format::binary) {
     unsigned char count[8];
     for (int i = 0; i < 8; ++i) count[i] = static_cast<unsigned char>(std::uint64_t{count_} >> (8 * i));
     file_->patch(binary_simplices_count_offset, count, sizeof count);  // (kept unknown on a pipe)

@@ -52,6 +52,7 @@
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
+#include "dewall/io/simplex_rows.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
 #include "dewall/kernel/dimension.hpp"
@@ -294,52 +295,17 @@ Share read_share(MPI_Comm comm, const std::string& name, int rank, int size) {
   return s;
 }
 
-enum class Format { binary, ele, plain };
+using Format = dewall::io::Simplex_format;
 
-Format format_of(const std::string& path) {
-  const auto named = dewall::io::format_named_by(path);
-  return named == dewall::io::Named_format::binary_simplices ? Format::binary
-         : named == dewall::io::Named_format::tetgen_ele     ? Format::ele
-                                                             : Format::plain;
-}
-
-/// The file's header: .dwsx's (with the count and the index width) or .ele's;
-/// the plain list has none.
-std::string header_of(Format f, int dimension, std::uint64_t count, int index_bytes) {
-  if (f == Format::binary) {
-    std::ostringstream out;
-    dewall::io::write_binary_simplices_header(out, dimension, count, index_bytes);
-    return out.str();
-  }
-  if (f == Format::ele) return std::to_string(count) + ' ' + std::to_string(dimension + 1) + " 0\n";
-  return {};
-}
-
-/// Appends the file's bytes for `batch`: .dwsx little-endian, `index_bytes`
-/// (4 or 8) per index, .ele rows numbered from `row`, else the plain list.
+/// Appends the file's bytes for `batch` (io/simplex_rows.hpp: the formatting
+/// every writer shares), .ele rows numbered from `row`.
 template <int D>
 void append_rows(std::string& out, std::span<const dewall::mpi::Global_simplex<D>> batch, Format f,
                  std::uint64_t& row, int index_bytes) {
-  char number[24];
-  const auto put = [&](std::uint64_t x) { out.append(number, std::to_chars(number, number + sizeof number, x).ptr); };
-  for (const auto& s : batch) {
-    if (f == Format::binary) {
-      char b[8 * (D + 1)];
-      for (int i = 0; i <= D; ++i)
-        for (int k = 0; k < index_bytes; ++k) b[index_bytes * i + k] = static_cast<char>(s[i] >> (8 * k));
-      out.append(b, static_cast<std::size_t>(index_bytes) * (D + 1));
-      continue;
-    }
-    if (f == Format::ele) {
-      put(row);
-      out += ' ';
-    }
-    for (int i = 0; i <= D; ++i) {
-      put(s[i]);
-      out += i == D ? '\n' : ' ';
-    }
-    ++row;
-  }
+  // A Global_simplex is D + 1 indices and nothing else: the batch is their flat sequence.
+  static_assert(sizeof(dewall::mpi::Global_simplex<D>) == sizeof(std::uint64_t) * (D + 1));
+  const std::span<const std::uint64_t> indices(batch.empty() ? nullptr : batch.front().data(), batch.size() * (D + 1));
+  dewall::io::append_simplex_rows(out, indices, D + 1, f, row, index_bytes);
 }
 
 /// The output written by every rank at once through MPI-IO into the
@@ -372,7 +338,7 @@ class Collective_writer {
     try {  // this rank's alone, after the collective calls: recorded
       if (format_ == Format::binary) {
         buffer_.reserve(flush_bytes + 4096 * sizeof(dewall::mpi::Global_simplex<D>));
-        offset_ = header_of(format_, D, 0, index_bytes_).size() + row_ * (D + 1) * static_cast<std::uint64_t>(index_bytes_);
+        offset_ = dewall::io::simplex_file_header(format_, D, 0, index_bytes_).size() + row_ * (D + 1) * static_cast<std::uint64_t>(index_bytes_);
       } else {
         part_begin_.push_back(buffer_.size());
       }
@@ -386,7 +352,7 @@ class Collective_writer {
   }
   /// Collective: writes what is left (the text formats: everything) and the header.
   void finish() {
-    const std::string header = header_of(format_, D, written_, index_bytes_);
+    const std::string header = dewall::io::simplex_file_header(format_, D, written_, index_bytes_);
     if (format_ == Format::binary) {
       flush();
       if (rank_ == 0) write(header.data(), header.size(), 0);
@@ -505,7 +471,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
   for (std::size_t i = 0; i < points.size(); ++i)
     for (int j = 0; j < D; ++j) points[i][j] = share.coordinates[i * D + static_cast<std::size_t>(j)];
   std::vector<double>().swap(share.coordinates);
-  const Format format = format_of(args.output);
+  const Format format = dewall::io::simplex_format_named_by(args.output);
   // 8-byte .dwsx indices when 4 cannot hold them (an index up to n − 1; 2^32 − 1 is no index in dewall's files).
   const int index_bytes = args.index_bytes ? args.index_bytes : share.count > (std::uint64_t{1} << 32) - 2 ? 8 : 4;
   dewall::mpi::Statistics st;
@@ -532,7 +498,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       void start(std::uint64_t n) {
         count += n;
         if (!begun && format == Format::binary) {
-          text = header_of(format, D, dewall::io::binary_simplices_unknown_count, index_bytes);
+          text = dewall::io::simplex_file_header(format, D, dewall::io::binary_simplices_unknown_count, index_bytes);
           file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
         }
         begun = true;
@@ -549,7 +515,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
           for (int k = 0; k < 8; ++k) le[k] = static_cast<unsigned char>(count >> (8 * k));
           file.patch(dewall::io::binary_simplices_count_offset, le, sizeof le);  // false (a device): kept unknown
         } else if (format == Format::ele) {
-          text = header_of(format, D, count, index_bytes);
+          text = dewall::io::simplex_file_header(format, D, count, index_bytes);
           file.stream().write(text.data(), static_cast<std::streamsize>(text.size()));
           file.stream().write(kept.data(), static_cast<std::streamsize>(kept.size()));
         }
@@ -663,7 +629,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       }
       step(comm, [&] {
         if (rank != 0) return;
-        std::string text = header_of(format, D, all.size(), index_bytes);
+        std::string text = dewall::io::simplex_file_header(format, D, all.size(), index_bytes);
         std::uint64_t row = 0;
         std::ostream& out = file->stream();
         for (std::size_t k = 0; k < all.size() && out; k += 4096) {

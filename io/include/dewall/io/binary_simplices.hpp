@@ -35,16 +35,14 @@ inline constexpr std::uint32_t binary_simplices_version = 1;
 inline constexpr std::uint64_t binary_simplices_unknown_count = ~std::uint64_t{0};
 
 /// Writes `t` (simplices of dimension t.vertices_per_simplex − 1) with 4-byte
-/// indices; `progress`, when given, receives the simplices written. The caller
-/// checks the stream state.
+/// indices (simplex_rows.hpp formats them); `progress`, when given, receives
+/// the simplices written. The caller checks the stream state.
 void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress* progress = nullptr);
 
 /// The header alone, for a writer that streams the indices after it
 /// (binary_simplices_unknown_count when it cannot know the count yet), with
 /// `index_bytes` (4 or 8) per index (dewall-mpi writes 8 beyond 2^32 − 2 points).
 void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count, int index_bytes = 4);
-/// Indices as the format stores them (4 bytes each), whole simplices.
-void write_binary_simplex_indices(std::ostream& out, std::span<const std::uint32_t> indices);
 /// Byte offset of the header's count field.
 inline constexpr std::size_t binary_simplices_count_offset = 16;
 

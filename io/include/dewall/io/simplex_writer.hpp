@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "dewall/io/point_reader.hpp"
+#include "dewall/io/simplex_rows.hpp"
 
 namespace dewall::io {
 
@@ -87,9 +88,9 @@ class Simplex_stream_writer {
 
  private:
   std::unique_ptr<Output_file> file_;
-  bool binary_;
+  Simplex_format format_;
   std::size_t k_;
-  std::size_t count_ = 0;
+  std::uint64_t count_ = 0;
   std::string text_;
 };
 
