@@ -18,9 +18,10 @@ enum class Engine {
   /// input of at most automatic_whole_limit distinct points (33554432 when
   /// collected with the default region size; one region's size otherwise) is
   /// built by the incremental construction alone: up to there the walls and
-  /// regions cost 1.3–1.9× its time on one thread and gain nothing on two
-  /// (docs/engines.md); the project's own inserts in parallel zones there. In 4D and up, the incremental construction alone (the
-  /// walls only add to it there).
+  /// regions cost more than it on one thread and gain nothing on two
+  /// (docs/engines.md, "The rule"); the project's own inserts in parallel
+  /// zones there. In 4D and up, the incremental construction alone (the walls
+  /// only add to it there).
   /// "The incremental construction" is the project's own (Engine::incremental)
   /// where it is measured faster than CGAL's, CGAL's (Engine::cgal) elsewhere:
   /// see default_incremental_engine and default_region_engine.
@@ -45,11 +46,8 @@ enum class Engine {
 
 /// The incremental construction Engine::automatic leaves an input to (one
 /// region's size, a spent search budget, 4D and up) in dimension D: the
-/// project's own, faster than CGAL's on one thread on every class measured —
-/// in 3D on every class handed over (spheres, shells, lattices, tori,
-/// layers), in the plane on uniform points, clusters and points on a circle
-/// since its 2D fan gluing and Hilbert table (it was CGAL's there until then),
-/// above 3D on uniform points. docs/engines.md has the measurements.
+/// project's own, faster than CGAL's on one thread on every class measured
+/// in every dimension (docs/performance.md, the benchmark suite).
 constexpr Engine default_incremental_engine(int /*dimension*/) { return Engine::incremental; }
 
 /// The incremental construction of the hybrid's regions: the project's own in
@@ -155,14 +153,11 @@ inline constexpr std::size_t largest_default_streaming_region = 32768;
 /// streaming_region_share-th of it (rounded up: a split's halves differ by
 /// one point, and a half one point above the size would take another level
 /// of walls), at most largest_streaming_region_at_scale. On millions of
-/// points the points and the walls' tree (about 80 bytes a point) outweigh
-/// the regions in flight, one a thread, and each level of walls costs time:
-/// uniform 10^7 streamed on two threads, regions of 156250 points (n/64)
-/// instead of 32768 took 26.1 s instead of 34.0 at the same peak, 815 MB
-/// (n/32: 26.1 s at 915 MB); 10^8, regions of 2^20 points instead of
-/// 262144, 280 s instead of 301 at the same peak, 7.57 GB (docs/engines.md).
-/// A region in flight holds about 170–300 bytes a point, so each thread adds
-/// up to 0.3 GB at 2^20 (Options::region_points sets a smaller size). Above
+/// points the points and the walls' tree outweigh the regions in flight, one
+/// a thread, and each level of walls costs time, so larger regions are
+/// faster at the same peak (docs/engines.md has the measurements). A region
+/// in flight holds a few hundred bytes a point, so each thread adds up to
+/// about 0.3 GB at 2^20 (Options::region_points sets a smaller size). Above
 /// collecting's largest_default_region: collecting holds its output too,
 /// streaming only its regions in flight.
 inline constexpr std::size_t streaming_region_share = 64;

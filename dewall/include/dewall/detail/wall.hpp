@@ -480,8 +480,8 @@ class Wall_builder {
 
   /// A wall's slab holds about this many times n^((D−1)/D) points (slab_of):
   /// for points spread in volume, a layer and a half on each side of α, enough
-  /// that most wall simplices lie in it with their spheres (of 2, 3, 4, 6, 8,
-  /// 3 and 4 were fastest: docs/engines.md).
+  /// that most wall simplices lie in it with their spheres (the fastest of the
+  /// factors measured: docs/engines.md).
   static constexpr double slab_size_factor = 3;
 
   const Point_set<K>& ps_;

@@ -692,10 +692,8 @@ template <class Recipe, int D>
 /// what filtered(p)
 /// answers, without computing them again. Stage 1 inline, the rest
 /// (after_filter) out of line: on surface samples the static filter leaves
-/// about half of the sphere tests to stage 1, which decides them (a torus
-/// with noise, 10^6 points: 24.7 M of 44 M). Called out of line, the matrix
-/// stored for the call, it took 7 % of that construction; inlined, 5 % less
-/// time there, uniform points unchanged (docs/engines.md). In 3D the static
+/// about half of the sphere tests to stage 1, which decides them, and a call
+/// out of line cost measurably there (docs/engines.md). In 3D the static
 /// filter's own semi-static bound now decides those before (static_filter.hpp):
 /// here stage 1 adds only a zero column's ZERO, and `computed` for the rest.
 template <class Recipe, int D>
