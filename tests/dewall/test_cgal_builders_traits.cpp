@@ -112,9 +112,9 @@ template <class DT, class Items>
 bool dewall_applies(const Items& items, const typename DT::Geom_traits& gt = {}) {
   DT dt(gt);
   if constexpr (requires { dt.finite_cells_begin(); })
-    return dewall::cgal::detail::build_with_dewall_3(dt, items, dewall::Options{});
+    return dewall::cgal::detail::build_with_dewall_3(dt, items, dewall::Options{}) != dewall::cgal::detail::Assembly::none;
   else
-    return dewall::cgal::detail::build_with_dewall_2(dt, items, dewall::Options{});
+    return dewall::cgal::detail::build_with_dewall_2(dt, items, dewall::Options{}) != dewall::cgal::detail::Assembly::none;
 }
 
 template <class Gt>

@@ -33,12 +33,13 @@ namespace detail {
 template <class DT>
 inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
 
-/// Builds dt (freshly constructed) from items with DeWall; false when DeWall
-/// does not apply (see make_delaunay_triangulation_2) and dt is untouched.
+/// Builds dt (freshly constructed) from items with DeWall; Assembly::none
+/// when DeWall does not apply (see make_delaunay_triangulation_2) and dt is
+/// untouched.
 template <class DT, class Item>
-bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
   if constexpr (is_hierarchy_2<DT>) {
-    return false;
+    return Assembly::none;
   } else {
     return build_with_dewall<2>(dt, items, options);
   }

@@ -32,12 +32,13 @@ namespace detail {
 template <class DT>
 inline constexpr bool is_fast_location_3 = std::is_same_v<typename DT::Location_policy, CGAL::Fast_location>;
 
-/// Builds dt (freshly constructed) from items with DeWall; false when DeWall
-/// does not apply (see make_delaunay_triangulation_3) and dt is untouched.
+/// Builds dt (freshly constructed) from items with DeWall; Assembly::none
+/// when DeWall does not apply (see make_delaunay_triangulation_3) and dt is
+/// untouched.
 template <class DT, class Item>
-bool build_with_dewall_3(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall_3(DT& dt, const std::vector<Item>& items, const Options& options) {
   if constexpr (is_fast_location_3<DT>) {
-    return false;
+    return Assembly::none;
   } else {
     return build_with_dewall<3>(dt, items, options);
   }
