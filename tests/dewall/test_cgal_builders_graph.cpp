@@ -7,6 +7,9 @@
 // duplicates, cospherical points), with vertex info, Parallel_tag and in 4D.
 #include <catch2/catch.hpp>
 
+#include <CGAL/Alpha_shape_3.h>
+#include <CGAL/Alpha_shape_cell_base_3.h>
+#include <CGAL/Alpha_shape_vertex_base_3.h>
 #include <CGAL/Delaunay_triangulation.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Delaunay_triangulation_3.h>
@@ -17,6 +20,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <iterator>
 #include <map>
 #include <random>
 #include <vector>
@@ -82,8 +87,9 @@ std::vector<std::array<std::size_t, D + 1>> cells_by_index(const DT& t, const It
 template <int D, class DT, class Items>
 void check_assembly(const Items& items, const dewall::Options& options, Assembly expected, DT theirs, DT ours) {
   Assembly built;
-  if constexpr (D == 2) built = dewall::cgal::detail::build_with_dewall_2(ours, items, options);
-  else built = dewall::cgal::detail::build_with_dewall_3(ours, items, options);
+  Items copy = items;  // the builder empties it
+  if constexpr (D == 2) built = dewall::cgal::detail::build_with_dewall_2(ours, copy, options);
+  else built = dewall::cgal::detail::build_with_dewall_3(ours, copy, options);
   REQUIRE(built == expected);
   REQUIRE(ours.is_valid(true));
   CHECK(ours.number_of_vertices() == theirs.number_of_vertices());
@@ -200,7 +206,8 @@ TEST_CASE("CGAL builders, both assemblies: 3D Parallel_tag", "[cgal][builders][a
     DT3_parallel theirs(points.begin(), points.end(), K(), &theirs_lock);
     for (const dewall::Engine engine : {dewall::Engine::automatic, dewall::Engine::dewall}) {
       DT3_parallel ours(K(), &ours_lock);
-      const Assembly built = dewall::cgal::detail::build_with_dewall_3(ours, points, with_engine(engine));
+      std::vector<K::Point_3> copy = points;  // the builder empties it
+      const Assembly built = dewall::cgal::detail::build_with_dewall_3(ours, copy, with_engine(engine));
       CHECK(built == (engine == dewall::Engine::automatic ? Assembly::from_adjacency : Assembly::from_simplices));
       REQUIRE(ours.is_valid(true));
       CHECK(cells_by_index<3>(ours, points) == cells_by_index<3>(theirs, points));
@@ -242,7 +249,8 @@ TEST_CASE("CGAL builders, adjacency assembly: zoned insertion's free slots", "[c
     std::vector<K::Point_2> points;
     for (const auto& p : dewall::test::uniform<2>(80000, rng)) points.push_back(to_point<K::Point_2>(p));
     DT2 ours;
-    REQUIRE(dewall::cgal::detail::build_with_dewall_2(ours, points, {}) == Assembly::from_adjacency);
+    std::vector<K::Point_2> copy = points;
+    REQUIRE(dewall::cgal::detail::build_with_dewall_2(ours, copy, {}) == Assembly::from_adjacency);
     REQUIRE(ours.is_valid(true));
     CHECK(cells_by_index<2>(ours, points) == cells_by_index<2>(DT2(points.begin(), points.end()), points));
   }
@@ -250,8 +258,44 @@ TEST_CASE("CGAL builders, adjacency assembly: zoned insertion's free slots", "[c
     std::vector<K::Point_3> points;
     for (const auto& p : dewall::test::uniform<3>(75000, rng)) points.push_back(to_point<K::Point_3>(p));
     DT3 ours;
-    REQUIRE(dewall::cgal::detail::build_with_dewall_3(ours, points, {}) == Assembly::from_adjacency);
+    std::vector<K::Point_3> copy = points;
+    REQUIRE(dewall::cgal::detail::build_with_dewall_3(ours, copy, {}) == Assembly::from_adjacency);
     REQUIRE(ours.is_valid(true));
     CHECK(cells_by_index<3>(ours, points) == cells_by_index<3>(DT3(points.begin(), points.end()), points));
+  }
+}
+
+TEST_CASE("CGAL builders: CGAL's constructor forms and classes derived from the triangulation", "[cgal][builders]") {
+  std::mt19937_64 rng(20261209);
+  std::vector<K::Point_3> points;
+  for (const auto& p : dewall::test::uniform<3>(1000, rng)) points.push_back(to_point<K::Point_3>(p));
+  SECTION("DT(first, last, &lock_ds)") {
+    DT3_parallel::Lock_data_structure lock(CGAL::Bbox_3(0, 0, 0, 1, 1, 1), 20);
+    const DT3_parallel ours = dewall::cgal::make_delaunay_triangulation_3<DT3_parallel>(points.begin(), points.end(), &lock);
+    const DT3_parallel theirs(points.begin(), points.end(), &lock);
+    CHECK(ours.get_lock_data_structure() == &lock);
+    REQUIRE(ours.is_valid(true));
+    CHECK(cells_by_index<3>(ours, points) == cells_by_index<3>(theirs, points));
+  }
+  SECTION("Alpha_shape_3<DT>: made from the assembled triangulation, as its range constructor does") {
+    using Tds = CGAL::Triangulation_data_structure_3<CGAL::Alpha_shape_vertex_base_3<K>, CGAL::Alpha_shape_cell_base_3<K>>;
+    using Alpha_shape = CGAL::Alpha_shape_3<CGAL::Delaunay_triangulation_3<K, Tds>>;
+    const Alpha_shape ours = dewall::cgal::make_delaunay_triangulation_3<Alpha_shape>(points.begin(), points.end());
+    const Alpha_shape theirs(points.begin(), points.end());
+    REQUIRE(ours.is_valid(true));
+    CHECK(cells_by_index<3>(ours, points) == cells_by_index<3>(theirs, points));
+    // The alphas are squared radii, constructed inexactly: their rounding
+    // depends on the order of each cell's vertices.
+    const auto close = [](double a, double b) { return std::abs(a - b) <= 1e-12 * std::abs(b); };
+    REQUIRE(ours.number_of_alphas() == theirs.number_of_alphas());
+    CHECK(std::equal(ours.alpha_begin(), ours.alpha_end(), theirs.alpha_begin(), close));
+    CHECK(close(*ours.find_optimal_alpha(1), *theirs.find_optimal_alpha(1)));
+    const auto classified = [](const Alpha_shape& a, Alpha_shape::Classification_type type) {
+      std::vector<Alpha_shape::Cell_handle> cells;
+      a.get_alpha_shape_cells(std::back_inserter(cells), type);
+      return cells.size();
+    };
+    CHECK(classified(ours, Alpha_shape::INTERIOR) == classified(theirs, Alpha_shape::INTERIOR));
+    CHECK(ours.get_mode() == theirs.get_mode());
   }
 }

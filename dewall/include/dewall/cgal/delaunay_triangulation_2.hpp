@@ -37,7 +37,7 @@ inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
 /// when DeWall does not apply (see make_delaunay_triangulation_2) and dt is
 /// untouched.
 template <class DT, class Item>
-Assembly build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall_2(DT& dt, std::vector<Item>& items, const Options& options) {
   if constexpr (is_hierarchy_2<DT>) {
     return Assembly::none;
   } else {
@@ -96,7 +96,7 @@ DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const 
                 "structure, or a Triangulation_hierarchy_2 of one); for 3D use make_delaunay_triangulation_3, for "
                 "dD make_delaunay_triangulation_d");
   if constexpr (is_delaunay_2)
-    return detail::make_triangulation<DT>([&] { return DT(traits); }, first, last, options, [](DT& dt, const auto& items, const Options& o) {
+    return detail::make_triangulation<DT>([&] { return DT(traits); }, first, last, options, [](DT& dt, auto& items, const Options& o) {
       return detail::build_with_dewall_2(dt, items, o);
     });
   else

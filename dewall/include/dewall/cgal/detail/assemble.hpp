@@ -272,7 +272,7 @@ struct Tds_access {
 
   Tds& tds;
   Vertex_handle infinite;
-  const std::vector<Item>& items;  // by input index
+  std::vector<Item>& items;  // by input index
   Vertex_handle infinite_vertex() const { return infinite; }
   Vertex_handle create_vertex(std::size_t i) {
     Vertex_handle v = tds.create_vertex();
@@ -291,6 +291,18 @@ struct Tds_access {
       return c;
     }
   }
+  /// create_cell without setting the vertices' cells (Graph_assembly sets
+  /// each vertex's once, set_incident_cell).
+  Cell_handle create_bare_cell(const std::array<Vertex_handle, D + 1>& w) {
+    if constexpr (D == 2) return tds.create_face(w[0], w[1], w[2]);
+    else return tds.create_cell(w[0], w[1], w[2], w[3]);
+  }
+  static void set_incident_cell(Vertex_handle v, Cell_handle c) {
+    if constexpr (D == 2) v->set_face(c);
+    else v->set_cell(c);
+  }
+  /// Every vertex is made: the caller's items go (Graph_assembly).
+  void vertices_made() { std::vector<Item>().swap(items); }
   void reserve(std::size_t vertices, std::size_t cells) {
     // 3D only (where it was measured); not in the concurrent container.
     if constexpr (D == 3 && requires { tds.cells().reserve(cells); }) {
@@ -356,7 +368,7 @@ Assembly triangulate_into(std::vector<kernel::Point_d<D>>& coords, const Options
 /// fresh infinite vertex (clear() drops the one DT's constructor made),
 /// dimension D; returns the Tds_access over it.
 template <int D, class DT, class Item, class Traits>
-Tds_access<D, DT, Item, Traits> prepared_tds(DT& dt, const std::vector<Item>& items) {
+Tds_access<D, DT, Item, Traits> prepared_tds(DT& dt, std::vector<Item>& items) {
   auto& tds = dt.tds();
   tds.clear();
   Tds_access<D, DT, Item, Traits> access{tds, tds.create_vertex(), items};
@@ -365,7 +377,8 @@ Tds_access<D, DT, Item, Traits> prepared_tds(DT& dt, const std::vector<Item>& it
   return access;
 }
 
-/// Builds dt (freshly constructed) from items with dewall::triangulate: from
+/// Builds dt (freshly constructed) from items (emptied once the
+/// triangulation's vertices hold their points) with dewall::triangulate: from
 /// the incremental engine's adjacency (Graph_assembly) when that engine
 /// builds it, as Engine::automatic does below 2^25 points, else from the
 /// simplices (assemble()); Assembly::none when DeWall does not apply and dt
@@ -375,7 +388,7 @@ Tds_access<D, DT, Item, Traits> prepared_tds(DT& dt, const std::vector<Item>& it
 /// (has_projected_twins), or the points do not span E^D (or are more than
 /// 32-bit indices hold).
 template <int D, class DT, class Item>
-Assembly build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall(DT& dt, std::vector<Item>& items, const Options& options) {
   using Axes = Dewall_axes<typename DT::Geom_traits, D>;
   if constexpr (!Axes::known) {
     return Assembly::none;
@@ -401,7 +414,7 @@ DT make_triangulation(Make_empty&& make_empty, InputIterator first, InputIterato
                       Build&& build_with_dewall) {
   DT dt = make_empty();
   using Info = typename Vertex_info<typename DT::Vertex>::type;
-  const auto items = read_items<typename DT::Point, Info>(first, last);
+  auto items = read_items<typename DT::Point, Info>(first, last);
   if (build_with_dewall(dt, items, options) == Assembly::none) dt.insert(items.begin(), items.end());
   return dt;
 }
