@@ -8,6 +8,10 @@
 
 #include <boost/tuple/tuple.hpp>
 
+#ifdef __GLIBC__
+#include <malloc.h>  // malloc_trim
+#endif
+
 #include <algorithm>
 #include <array>
 #include <concepts>
@@ -250,6 +254,16 @@ bool has_projected_twins(const std::vector<kernel::Point_d<D>>& coords, const It
   return false;
 }
 
+/// Returns the free memory at the top of the heap to the system: a large
+/// copy freed there (glibc maps only blocks above a threshold it raises when
+/// a mapped block is freed, as the caller's points may have been) would
+/// otherwise stay resident while CGAL's containers grow elsewhere.
+inline void give_back_freed_memory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 /// The handle of a cell of Triangulation_data_structure_2 (a face) or _3.
 template <int D, class Tds>
 struct Tds_cell;
@@ -302,7 +316,10 @@ struct Tds_access {
     else v->set_cell(c);
   }
   /// Every vertex is made: the caller's items go (Graph_assembly).
-  void vertices_made() { std::vector<Item>().swap(items); }
+  void vertices_made() {
+    std::vector<Item>().swap(items);
+    give_back_freed_memory();
+  }
   void reserve(std::size_t vertices, std::size_t cells) {
     // 3D only (where it was measured); not in the concurrent container.
     if constexpr (D == 3 && requires { tds.cells().reserve(cells); }) {
@@ -335,7 +352,10 @@ struct Builder_sink {
   dewall::detail::Cell_graph_output<D>* cell_graph() { return &assembly; }
   void reserve(std::size_t n) { simplices.reserve(n); }
   void operator()(const Simplex<D>& s) { simplices.push_back(s); }
-  void input_no_longer_read() { std::vector<kernel::Point_d<D>>().swap(coords); }
+  void input_no_longer_read() {
+    std::vector<kernel::Point_d<D>>().swap(coords);
+    give_back_freed_memory();
+  }
 };
 
 /// Triangulates `coords` (freed once the engine has copied them) into the

@@ -22,16 +22,18 @@ namespace dewall::cgal::detail {
 /// The engine's triangulation in a TDS through `Access` (assemble.hpp's
 /// policy: Vertex_handle, Cell_handle, infinite_vertex(), create_vertex(input
 /// index), create_cell(vertices) (which sets each vertex's cell),
-/// set_neighbors(a, i, b, j), optionally vertices_made(): the input is no
-/// longer read). `make_access()` prepares the empty TDS
-/// (the infinite vertex, the dimension) and returns the policy; it is called
-/// when the engine's triangulation arrives, so an engine that hands over
-/// simplices instead (DeWall) leaves the TDS untouched.
-/// Vertices are created in the engine's order (its insertion order: along a
-/// space-filling curve, as CGAL's construction orders them too), cells in
-/// slot order with the engine's orientation (positive; an infinite cell as
-/// if its infinite vertex were a point beyond the hull facet, which is
-/// CGAL's convention).
+/// set_neighbors(a, i, b, j); optionally vertices_made() (the input is read
+/// no more), and create_bare_cell(vertices) with set_incident_cell(v, c),
+/// which let each vertex's cell be set once, at the end). `make_access()`
+/// prepares the empty TDS (the infinite vertex, the dimension) and returns
+/// the policy; it is called when the engine's triangulation arrives, so an
+/// engine that hands over simplices instead (DeWall) leaves the TDS
+/// untouched.
+/// Vertices are created in the engine's order (its insertion order, along a
+/// Hilbert curve), cells in slot order with the engine's orientation
+/// (positive; an infinite cell as if its infinite vertex were a point beyond
+/// the hull facet, which is CGAL's convention).
+/// Memory besides the TDS: a handle per vertex and per slot, 32 bits per vertex.
 template <int D, class Access, class Make_access>
 class Graph_assembly final : public dewall::detail::Cell_graph_output<D> {
  public:
