@@ -1,6 +1,6 @@
 // dewall::cgal::make_delaunay_triangulation_3: a genuine
-// CGAL::Delaunay_triangulation_3, computed by DeWall and assembled directly in
-// its triangulation data structure (no point is re-inserted).
+// CGAL::Delaunay_triangulation_3, computed by dewall's engine and assembled
+// directly in its triangulation data structure (no point is re-inserted).
 //
 // The one-line change for a CGAL program:
 //

@@ -99,10 +99,12 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
 /// dD range insert takes no vertex data either); any input iterator.
 ///
 /// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
-/// per distinct point (the first occurrence, in input order), DeWall's full
-/// cells (positively oriented), one infinite full cell per hull facet,
-/// neighbours and mirror indices (matched through a hash table of facets),
-/// current dimension D. The finite full cells are exactly those of CGAL's own
+/// per distinct point (the first occurrence), the full cells (positively
+/// oriented) and infinite full cells with their neighbours and mirror
+/// indices, current dimension D: from the incremental engine's own cells and
+/// adjacency (detail/graph_assembly.hpp; the default engine in 4D and up),
+/// or from another engine's simplices, their facets matched through a hash
+/// table (detail/assemble.hpp). The finite full cells are exactly those of CGAL's own
 /// insertion (as vertex sets, cospherical points included).
 ///
 /// Falls back to CGAL's own insertion (same result, CGAL's speed) when the
