@@ -308,8 +308,15 @@ struct Tds_access {
   /// create_cell without setting the vertices' cells (Graph_assembly sets
   /// each vertex's once, set_incident_cell).
   Cell_handle create_bare_cell(const std::array<Vertex_handle, D + 1>& w) {
-    if constexpr (D == 2) return tds.create_face(w[0], w[1], w[2]);
-    else return tds.create_cell(w[0], w[1], w[2], w[3]);
+    if constexpr (D == 2) {
+      Cell_handle c = tds.create_face();
+      c->set_vertices(w[0], w[1], w[2]);
+      return c;
+    } else {
+      Cell_handle c = tds.create_cell();
+      c->set_vertices(w[0], w[1], w[2], w[3]);
+      return c;
+    }
   }
   static void set_incident_cell(Vertex_handle v, Cell_handle c) {
     if constexpr (D == 2) v->set_face(c);
