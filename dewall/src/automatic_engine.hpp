@@ -42,6 +42,7 @@ class Restored_input_output final : public Simplex_output<D> {
  public:
   Restored_input_output(Simplex_output<D>& output, std::vector<kernel::Point_d<D>>& restored)
       : output_(output), restored_(restored) {}
+  Cell_graph_output<D>* cell_graph() override { return output_.cell_graph(); }
   void expect(std::size_t count) override { output_.expect(count); }
   void put(std::span<const Built_simplex<D>> block) override { output_.put(block); }
   bool frees_input() const override { return true; }

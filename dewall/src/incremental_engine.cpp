@@ -120,6 +120,23 @@ std::size_t hand_over_cells(Incremental_delaunay<D>& dt, Simplex_output<D>& outp
   return count;
 }
 
+/// Gives `graph` the vertices, then the slots in blocks, each block's pages
+/// released once it has been read: the receiver's structure grows into them.
+/// Returns the number of finite cells.
+template <int D>
+std::size_t hand_over_graph(Incremental_delaunay<D>& dt, Cell_graph_output<D>& graph) {
+  constexpr std::size_t slots_per_block = std::size_t{1} << 15;
+  const std::size_t slots = dt.slots(), finite = dt.finite_cells();
+  graph.vertices(dt.input_indices());
+  graph.begin_cells(slots, finite);
+  for (std::size_t first = 0; first < slots; first += slots_per_block) {
+    const std::size_t last = std::min(slots, first + slots_per_block);
+    graph.cells(first, dt.records(first, last));
+    dt.release_slots(first, last);
+  }
+  return finite;
+}
+
 }  // namespace
 
 template <int D>
@@ -155,7 +172,9 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
   // tool: its peak 448 → 312 MB, then the end of the build).
   const std::size_t distinct_count = dt.vertices();  // finish_for_reading frees the points
   dt.finish_for_reading();
-  return incremental_statistics(Engine::incremental, points.size(), distinct_count, hand_over_cells(dt, output));
+  Cell_graph_output<D>* graph = output.cell_graph();
+  const std::size_t simplices = graph ? hand_over_graph(dt, *graph) : hand_over_cells(dt, output);
+  return incremental_statistics(Engine::incremental, points.size(), distinct_count, simplices);
 }
 
 template <int D>

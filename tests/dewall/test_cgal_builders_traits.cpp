@@ -111,10 +111,11 @@ std::vector<P3> grid_points(int axis_u, int axis_v, std::uint64_t seed) {
 template <class DT, class Items>
 bool dewall_applies(const Items& items, const typename DT::Geom_traits& gt = {}) {
   DT dt(gt);
+  Items copy = items;  // the builder empties it
   if constexpr (requires { dt.finite_cells_begin(); })
-    return dewall::cgal::detail::build_with_dewall_3(dt, items, dewall::Options{});
+    return dewall::cgal::detail::build_with_dewall_3(dt, copy, dewall::Options{}) != dewall::cgal::detail::Assembly::none;
   else
-    return dewall::cgal::detail::build_with_dewall_2(dt, items, dewall::Options{});
+    return dewall::cgal::detail::build_with_dewall_2(dt, copy, dewall::Options{}) != dewall::cgal::detail::Assembly::none;
 }
 
 template <class Gt>

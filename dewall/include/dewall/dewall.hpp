@@ -136,6 +136,10 @@ template <int D, class Sink>
 class Sink_output final : public Simplex_output<D> {
  public:
   explicit Sink_output(Sink& sink) : sink_(sink) {}
+  Cell_graph_output<D>* cell_graph() override {
+    if constexpr (requires { sink_.cell_graph(); }) return sink_.cell_graph();
+    else return nullptr;
+  }
   void expect(std::size_t count) override {
     if constexpr (requires { sink_.reserve(count); }) sink_.reserve(count);
   }

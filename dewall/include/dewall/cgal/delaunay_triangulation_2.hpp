@@ -1,6 +1,6 @@
 // dewall::cgal::make_delaunay_triangulation_2: a genuine
-// CGAL::Delaunay_triangulation_2, computed by DeWall and assembled directly in
-// its triangulation data structure (no point is re-inserted). The 2D twin of
+// CGAL::Delaunay_triangulation_2, computed by dewall's engine and assembled
+// directly in its triangulation data structure (no point is re-inserted). The 2D twin of
 // delaunay_triangulation_3.hpp (cells are CGAL's faces).
 //
 // The one-line change for a CGAL program:
@@ -33,12 +33,13 @@ namespace detail {
 template <class DT>
 inline constexpr bool is_hierarchy_2 = requires { typename DT::Tr_Base; };
 
-/// Builds dt (freshly constructed) from items with DeWall; false when DeWall
-/// does not apply (see make_delaunay_triangulation_2) and dt is untouched.
+/// Builds dt (freshly constructed) from items with DeWall; Assembly::none
+/// when DeWall does not apply (see make_delaunay_triangulation_2) and dt is
+/// untouched.
 template <class DT, class Item>
-bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall_2(DT& dt, std::vector<Item>& items, const Options& options) {
   if constexpr (is_hierarchy_2<DT>) {
-    return false;
+    return Assembly::none;
   } else {
     return build_with_dewall<2>(dt, items, options);
   }
@@ -58,9 +59,11 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 /// the info of its point's first occurrence in the range.
 ///
 /// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
-/// per distinct point (the first occurrence, in input order), DeWall's
-/// triangles (counterclockwise), one infinite face per hull edge, all
-/// neighbour relations (matched through a hash table of edges), dimension 2. The result is exactly the
+/// per distinct point (the first occurrence), the triangles
+/// (counterclockwise) and infinite faces with their neighbours, dimension 2:
+/// from the incremental engine's own cells and adjacency in one pass
+/// (detail/graph_assembly.hpp), or from another engine's triangles, their
+/// edges matched through a hash table (detail/assemble.hpp). The result is exactly the
 /// triangulation CGAL's own insertion would give (the same cells as vertex
 /// sets, also for cospherical points, by the shared symbolic perturbation).
 ///
@@ -84,7 +87,7 @@ bool build_with_dewall_2(DT& dt, const std::vector<Item>& items, const Options& 
 ///
 /// \pre every coordinate is finite.
 /// \throws dewall::Invalid_input for a NaN or infinite coordinate.
-/// Complexity: DeWall's (expected O(n log n) for uniform points) plus O(n +
+/// Complexity: the engine's (expected O(n log n) for uniform points) plus O(n +
 /// number of cells) for the assembly.
 template <class DT, class InputIterator>
 DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const Options& options = {},
@@ -95,7 +98,7 @@ DT make_delaunay_triangulation_2(InputIterator first, InputIterator last, const 
                 "structure, or a Triangulation_hierarchy_2 of one); for 3D use make_delaunay_triangulation_3, for "
                 "dD make_delaunay_triangulation_d");
   if constexpr (is_delaunay_2)
-    return detail::make_triangulation<DT>([&] { return DT(traits); }, first, last, options, [](DT& dt, const auto& items, const Options& o) {
+    return detail::make_triangulation<DT>([&] { return DT(traits); }, first, last, options, [](DT& dt, auto& items, const Options& o) {
       return detail::build_with_dewall_2(dt, items, o);
     });
   else

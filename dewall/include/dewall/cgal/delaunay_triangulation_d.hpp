@@ -71,21 +71,21 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
   // perturbation order (Triangulation/internal/utilities.h) is ours; other dD
   // traits (Epeck_d, Cartesian_d, a user's) are left to CGAL.
   if constexpr (!std::is_same_v<typename DT::Geom_traits, CGAL::Epick_d<CGAL::Dimension_tag<D>>>) return false;
-  const auto coords = to_dewall_points<D, std::vector<Point>, Traits>(points, [](const Point& p, int j) { return p[j]; });
+  else {
+  auto coords = to_dewall_points<D, std::vector<Point>, Traits>(points, [](const Point& p, int j) { return p[j]; });
   if (!coords) return false;
-  const auto simplices = dewall_simplices<D>(*coords, options);
-  if (!simplices) return false;
-
   // Triangulation keeps its infinite vertex in a member without a setter, so
   // keep the one its constructor made and drop only its full cells.
-  auto& tds = dt.tds();
-  std::vector<typename Tds_d_access<DT, D>::Cell_handle> old;
-  for (auto c = tds.full_cells_begin(); c != tds.full_cells_end(); ++c) old.push_back(c);
-  for (auto c : old) tds.delete_full_cell(c);
-  tds.set_current_dimension(D);
-  Tds_d_access<DT, D> access{tds, dt.infinite_vertex(), points};
-  assemble<D>(*simplices, points.size(), access);
-  return true;
+  const auto prepared = [&] {
+    auto& tds = dt.tds();
+    std::vector<typename Tds_d_access<DT, D>::Cell_handle> old;
+    for (auto c = tds.full_cells_begin(); c != tds.full_cells_end(); ++c) old.push_back(c);
+    for (auto c : old) tds.delete_full_cell(c);
+    tds.set_current_dimension(D);
+    return Tds_d_access<DT, D>{tds, dt.infinite_vertex(), points};
+  };
+  return triangulate_into<D, Tds_d_access<DT, D>>(*coords, options, prepared) != Assembly::none;
+  }
 }
 
 }  // namespace detail
@@ -99,10 +99,12 @@ bool build_with_dewall_d(DT& dt, const std::vector<typename DT::Point>& points, 
 /// dD range insert takes no vertex data either); any input iterator.
 ///
 /// Built by dewall::triangulate and assembled directly in dt.tds(): one vertex
-/// per distinct point (the first occurrence, in input order), DeWall's full
-/// cells (positively oriented), one infinite full cell per hull facet,
-/// neighbours and mirror indices (matched through a hash table of facets),
-/// current dimension D. The finite full cells are exactly those of CGAL's own
+/// per distinct point (the first occurrence), the full cells (positively
+/// oriented) and infinite full cells with their neighbours and mirror
+/// indices, current dimension D: from the incremental engine's own cells and
+/// adjacency (detail/graph_assembly.hpp; the default engine in 4D and up),
+/// or from another engine's simplices, their facets matched through a hash
+/// table (detail/assemble.hpp). The finite full cells are exactly those of CGAL's own
 /// insertion (as vertex sets, cospherical points included).
 ///
 /// Falls back to CGAL's own insertion (same result, CGAL's speed) when the

@@ -77,6 +77,7 @@
 #endif
 
 #include "dewall/detail/assert.hpp"
+#include "dewall/detail/cell_graph_output.hpp"
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/input.hpp"
 #include "dewall/detail/scratch_list.hpp"
@@ -124,11 +125,11 @@ class Incremental_delaunay {
   using Point = kernel::Point_d<D>;
   using Cell = std::array<Index, D + 1>;
   /// The vertex id of the infinite vertex.
-  static constexpr Index infinite = std::numeric_limits<Index>::max();
+  static constexpr Index infinite = Cell_graph<D>::infinite_vertex;
   /// A free slot's first vertex.
-  static constexpr Index free_slot = infinite - 1;
+  static constexpr Index free_slot = Cell_graph<D>::free_slot;
   /// Bits of a neighbour reference that hold the facet index.
-  static constexpr int facet_bits = std::bit_width(static_cast<unsigned>(D));
+  static constexpr int facet_bits = Cell_graph<D>::facet_bits;
 
   /// Triangulates `count` points (distinct, finite): point k's coordinates
   /// are coordinates(k) (an array of D doubles), its id for the caller id(k)
@@ -355,6 +356,12 @@ class Incremental_delaunay {
   std::size_t neighbor(std::size_t c, int i) const { return cells_[c].n[i] >> facet_bits; }
   /// The caller's id of vertex v (finite).
   Index input_index(Index v) const { return input_[v]; }
+  /// input_index of every vertex, by vertex id.
+  std::span<const Index> input_indices() const { return input_; }
+  /// The records of slots first … last − 1 (cell_graph_output.hpp says what they hold).
+  std::span<const Cell_record<D>> records(std::size_t first, std::size_t last) const {
+    return {cells_.data() + first, last - first};
+  }
   std::size_t finite_cells() const { return finite_cells_ + static_cast<std::size_t>(serial_.finite_change); }
   const Incremental_statistics& statistics() const { return serial_.stats; }
 
@@ -362,7 +369,8 @@ class Incremental_delaunay {
   /// drops the object (the collecting output): frees the points and the
   /// search's marks now (above 2D; in 2D they are in the cells). Afterwards
   /// only slots(), is_free(), is_infinite(), holds_finite_cell(), cell(),
-  /// input_index() and finite_cells() may be called, and after
+  /// records(), input_index(), input_indices() and finite_cells() may be
+  /// called, and after
   /// release_slots(first, last) on none of those slots.
   void finish_for_reading() {
     std::vector<Point>().swap(points_);
@@ -1406,15 +1414,11 @@ class Incremental_delaunay {
   /// 32-byte record is full (and larger ones cost more lines than the mark
   /// saves).
   static constexpr bool marks_in_cells = D == 2;
-  struct No_mark {};
-  /// A cell slot: its vertices and its neighbour references side by side, so
-  /// that the cell the cavity search reads (vertices) is the one the star
-  /// writes (a neighbour) in the same cache line; in 2D, its mark.
-  struct alignas(D <= 3 ? 32 : 8) Record {
-    Cell v;
-    std::array<std::uint32_t, D + 1> n;
-    [[no_unique_address]] std::conditional_t<marks_in_cells, std::uint8_t, No_mark> mark;
-  };
+  /// A cell slot (cell_graph_output.hpp): its vertices and its neighbour
+  /// references side by side; in 2D, its mark.
+  using Record = Cell_record<D>;
+  static_assert(std::is_same_v<decltype(Record::v), Cell>);
+  static_assert(std::is_same_v<decltype(Record::mark), std::uint8_t> == marks_in_cells);
   /// Allocates without initialising: a new slot is written whole before it
   /// is read (its vertices, then each neighbour reference), so growing the
   /// array does not clear it first (zoned insertion grows it by the zones'

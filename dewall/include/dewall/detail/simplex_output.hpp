@@ -28,11 +28,20 @@ struct Built_simplex {
   std::uint8_t wall_level;
 };
 
+template <int D>
+class Cell_graph_output;
+
 /// The receiver of an engine's simplices, block by block: in output order when
 /// collected or on one thread. Never called concurrently.
 template <int D>
 class Simplex_output {
  public:
+  /// A receiver of the whole triangulation with its adjacency
+  /// (cell_graph_output.hpp), or null. An engine that holds the adjacency
+  /// (the project's incremental construction, also when it takes over from
+  /// the walls) gives it there instead of calling expect() and put(); the
+  /// others call put() as ever.
+  virtual Cell_graph_output<D>* cell_graph() { return nullptr; }
   /// The number of simplices about to be put, when it is known before the
   /// first put (collected output): a receiver may reserve room.
   virtual void expect(std::size_t /*count*/) {}

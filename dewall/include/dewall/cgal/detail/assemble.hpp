@@ -8,6 +8,10 @@
 
 #include <boost/tuple/tuple.hpp>
 
+#ifdef __GLIBC__
+#include <malloc.h>  // malloc_trim
+#endif
+
 #include <algorithm>
 #include <array>
 #include <concepts>
@@ -17,12 +21,14 @@
 #include <limits>
 #include <numeric>
 #include <optional>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "dewall/cgal/detail/facet_matcher.hpp"
 #include "dewall/cgal/detail/geom_traits.hpp"
+#include "dewall/cgal/detail/graph_assembly.hpp"
 #include "dewall/detail/assert.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/error.hpp"
@@ -248,6 +254,16 @@ bool has_projected_twins(const std::vector<kernel::Point_d<D>>& coords, const It
   return false;
 }
 
+/// Returns the free memory at the top of the heap to the system: a large
+/// copy freed there (glibc maps only blocks above a threshold it raises when
+/// a mapped block is freed, as the caller's points may have been) would
+/// otherwise stay resident while CGAL's containers grow elsewhere.
+inline void give_back_freed_memory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
 /// The handle of a cell of Triangulation_data_structure_2 (a face) or _3.
 template <int D, class Tds>
 struct Tds_cell;
@@ -270,7 +286,7 @@ struct Tds_access {
 
   Tds& tds;
   Vertex_handle infinite;
-  const std::vector<Item>& items;  // by input index
+  std::vector<Item>& items;  // by input index
   Vertex_handle infinite_vertex() const { return infinite; }
   Vertex_handle create_vertex(std::size_t i) {
     Vertex_handle v = tds.create_vertex();
@@ -289,6 +305,28 @@ struct Tds_access {
       return c;
     }
   }
+  /// create_cell without setting the vertices' cells (Graph_assembly sets
+  /// each vertex's once, set_incident_cell).
+  Cell_handle create_bare_cell(const std::array<Vertex_handle, D + 1>& w) {
+    if constexpr (D == 2) {
+      Cell_handle c = tds.create_face();
+      c->set_vertices(w[0], w[1], w[2]);
+      return c;
+    } else {
+      Cell_handle c = tds.create_cell();
+      c->set_vertices(w[0], w[1], w[2], w[3]);
+      return c;
+    }
+  }
+  static void set_incident_cell(Vertex_handle v, Cell_handle c) {
+    if constexpr (D == 2) v->set_face(c);
+    else v->set_cell(c);
+  }
+  /// Every vertex is made: the caller's items go (Graph_assembly).
+  void vertices_made() {
+    std::vector<Item>().swap(items);
+    give_back_freed_memory();
+  }
   void reserve(std::size_t vertices, std::size_t cells) {
     // 3D only (where it was measured); not in the concurrent container.
     if constexpr (D == 3 && requires { tds.cells().reserve(cells); }) {
@@ -302,34 +340,95 @@ struct Tds_access {
   }
 };
 
-/// Builds dt (freshly constructed) from items with DeWall, assembled in its
-/// data structure through Tds_access;
-/// false when DeWall does not apply and dt is untouched: DT's geometric traits
+/// How the builders built the triangulation, if it did.
+enum class Assembly {
+  none,            // DeWall did not apply: dt is untouched
+  from_adjacency,  // from the incremental engine's cells and neighbours (Graph_assembly)
+  from_simplices   // from the engine's simplices (assemble())
+};
+
+/// Where the engine's output goes: its triangulation with adjacency to a
+/// Graph_assembly (the project's incremental engine), else its simplices to
+/// a list assemble() wires afterwards (DeWall's walls, Engine::cgal). The
+/// caller's coordinates go once the engine has copied them.
+template <int D, class Receiver>
+struct Builder_sink {
+  Receiver& assembly;
+  std::vector<Simplex<D>>& simplices;
+  std::vector<kernel::Point_d<D>>& coords;
+  dewall::detail::Cell_graph_output<D>* cell_graph() { return &assembly; }
+  void reserve(std::size_t n) { simplices.reserve(n); }
+  void operator()(const Simplex<D>& s) { simplices.push_back(s); }
+  void input_no_longer_read() {
+    std::vector<kernel::Point_d<D>>().swap(coords);
+    give_back_freed_memory();
+  }
+};
+
+/// Triangulates `coords` (freed once the engine has copied them) into the
+/// data structure that `make_access()` prepares and returns the access
+/// policy of (see assemble()): from the incremental engine's adjacency when
+/// that engine builds the triangulation (Engine::automatic does below 2^25
+/// points, Engine::incremental always), else from the simplices. Returns
+/// Assembly::none, with make_access never called, when the points do not
+/// span E^D (or are more than 32-bit indices hold).
+template <int D, class Access, class Make_access>
+Assembly triangulate_into(std::vector<kernel::Point_d<D>>& coords, const Options& options, Make_access make_access) {
+  Graph_assembly<D, Access, Make_access> assembly(make_access);
+  std::vector<Simplex<D>> simplices;
+  const std::size_t input_size = coords.size();
+  try {
+    dewall::triangulate_to<kernel::Filtered_kernel_d<D>>(std::span<const kernel::Point_d<D>>(coords),
+                                                         Builder_sink<D, decltype(assembly)>{assembly, simplices, coords},
+                                                         options);
+  } catch (const Invalid_input&) {
+    DEWALL_ASSERT(!assembly.assembled());  // the input is checked before anything is built
+    return Assembly::none;
+  }
+  if (assembly.assembled()) return Assembly::from_adjacency;
+  Access access = make_access();
+  assemble<D>(simplices, input_size, access);
+  return Assembly::from_simplices;
+}
+
+/// Prepares dt's freshly constructed, empty data structure for assembly: a
+/// fresh infinite vertex (clear() drops the one DT's constructor made),
+/// dimension D; returns the Tds_access over it.
+template <int D, class DT, class Item, class Traits>
+Tds_access<D, DT, Item, Traits> prepared_tds(DT& dt, std::vector<Item>& items) {
+  auto& tds = dt.tds();
+  tds.clear();
+  Tds_access<D, DT, Item, Traits> access{tds, tds.create_vertex(), items};
+  dt.set_infinite_vertex(access.infinite);
+  tds.set_dimension(D);
+  return access;
+}
+
+/// Builds dt (freshly constructed) from items (emptied once the
+/// triangulation's vertices hold their points) with dewall::triangulate: from
+/// the incremental engine's adjacency (Graph_assembly) when that engine
+/// builds it, as Engine::automatic does below 2^25 points, else from the
+/// simplices (assemble()); Assembly::none when DeWall does not apply and dt
+/// is untouched: DT's geometric traits
 /// are not known to decide as DeWall does (Dewall_axes), a coordinate is not
 /// exactly a double, points equal under the projection differ as points
-/// (has_projected_twins), or the points do not span E^D.
+/// (has_projected_twins), or the points do not span E^D (or are more than
+/// 32-bit indices hold).
 template <int D, class DT, class Item>
-bool build_with_dewall(DT& dt, const std::vector<Item>& items, const Options& options) {
+Assembly build_with_dewall(DT& dt, std::vector<Item>& items, const Options& options) {
   using Axes = Dewall_axes<typename DT::Geom_traits, D>;
   if constexpr (!Axes::known) {
-    return false;
+    return Assembly::none;
   } else {
     using Traits = Item_traits<Item>;
-    const auto coords = to_dewall_points<D, std::vector<Item>, Traits>(
+    using Access = Tds_access<D, DT, Item, Traits>;
+    auto coords = to_dewall_points<D, std::vector<Item>, Traits>(
         items, [](const typename DT::Point& p, int j) { return p.cartesian(Axes::axes[static_cast<std::size_t>(j)]); });
-    if (!coords) return false;
+    if (!coords) return Assembly::none;
     if constexpr (Axes::projects)
-      if (has_projected_twins<D>(*coords, items)) return false;
-    const auto simplices = dewall_simplices<D>(*coords, options);
-    if (!simplices) return false;
+      if (has_projected_twins<D>(*coords, items)) return Assembly::none;
 
-    auto& tds = dt.tds();
-    tds.clear();  // drops the infinite vertex made by DT's constructor; a fresh one follows
-    Tds_access<D, DT, Item, Traits> access{tds, tds.create_vertex(), items};
-    dt.set_infinite_vertex(access.infinite);
-    tds.set_dimension(D);
-    assemble<D>(*simplices, items.size(), access);
-    return true;
+    return triangulate_into<D, Access>(*coords, options, [&] { return prepared_tds<D, DT, Item, Traits>(dt, items); });
   }
 }
 
@@ -342,8 +441,8 @@ DT make_triangulation(Make_empty&& make_empty, InputIterator first, InputIterato
                       Build&& build_with_dewall) {
   DT dt = make_empty();
   using Info = typename Vertex_info<typename DT::Vertex>::type;
-  const auto items = read_items<typename DT::Point, Info>(first, last);
-  if (!build_with_dewall(dt, items, options)) dt.insert(items.begin(), items.end());
+  auto items = read_items<typename DT::Point, Info>(first, last);
+  if (build_with_dewall(dt, items, options) == Assembly::none) dt.insert(items.begin(), items.end());
   return dt;
 }
 
