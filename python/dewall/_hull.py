@@ -153,6 +153,10 @@ class ConvexHull:
                     neighbors = ridge_pairs(facets)
                 self._facets(facets, neighbors, below)
 
+    def __repr__(self):
+        return (f"<dewall.ConvexHull: {self.npoints} points in E^{self.ndim}, {len(self.vertices)} vertices, "
+                f"{self.nsimplex} facets>")
+
     @property
     def min_bound(self):
         """The smallest coordinate along each axis, over all points (computed on first use)."""
@@ -399,6 +403,10 @@ class Voronoi(_FromDelaunay):
             elif len(region) > 1 and region[0] == region[-1]:  # a merged cell met again at the wrap
                 region.pop()
         return regions
+
+    def __repr__(self):
+        return (f"<dewall.Voronoi: {self.npoints} points in E^{self.ndim}, {len(self.vertices)} vertices, "
+                f"{len(self.ridge_points)} ridges, {len(self.regions)} regions>")
 
     @property
     def ridge_dict(self):
