@@ -55,6 +55,10 @@ struct Convex_hull {
   std::vector<std::uint32_t> below;
   /// Whether two neighbouring facets lie in one hyperplane (exact orientation zero).
   bool flat = false;
+  /// For each facet, a normal to its hyperplane in floating point, not unit, either way round:
+  /// the cofactors of the orientation determinant along the last row (the generalised cross
+  /// product of the edges from the first vertex).
+  std::vector<std::array<double, D>> normals;
 };
 
 namespace detail {
@@ -393,6 +397,7 @@ class Quickhull {
     for (const std::int32_t f : order) {
       index[f] = static_cast<std::int32_t>(out.facets.size());
       out.facets.push_back(facets_[f].v);
+      out.normals.push_back(facets_[f].normal);
     }
     for (const std::int32_t f : order) {
       std::array<std::int32_t, D> nb;

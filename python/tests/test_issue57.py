@@ -167,15 +167,112 @@ def test_py_typed_and_stubs_match_the_module():
                 assert _parameters(node) == _bound_parameters(getattr(_dewall.Triangulation, node.name)), node.name
 
 
-def test_mypy_accepts_the_package_and_its_stubs(tmp_path):
+def test_mypy_stubtest_agrees_with_the_module(tmp_path):
     pytest.importorskip("mypy")  # Debian's python3-mypy (scripts/setup.sh)
     where = os.path.dirname(os.path.dirname(dewall.__file__))
     allowlist = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stubtest_allowlist.txt")
-    env = {**os.environ, "MYPYPATH": where}
-    cache = ["--cache-dir", str(tmp_path / "cache")]  # not next to an installed package
     run = subprocess.run([sys.executable, "-m", "mypy.stubtest", "dewall._dewall", "--allowlist", allowlist],
-                         capture_output=True, text=True, env=env, cwd=tmp_path)
+                         capture_output=True, text=True, env={**os.environ, "MYPYPATH": where}, cwd=tmp_path)
     assert run.returncode == 0, run.stdout + run.stderr
-    run = subprocess.run([sys.executable, "-m", "mypy", *cache, "-p", "dewall"], capture_output=True, text=True,
-                         env=env, cwd=tmp_path)
-    assert run.returncode == 0, run.stdout + run.stderr
+
+
+# ---- Voronoi's ridges and regions, ConvexHull's equations: compiled, not a Python loop ----------
+
+
+def _python_calls(function):
+    """How many Python functions and builtins `function()` calls (sys.setprofile's events)."""
+    count = 0
+
+    def profile(frame, event, arg):
+        nonlocal count
+        count += event in ("call", "c_call")
+
+    sys.setprofile(profile)
+    try:
+        function()
+    finally:
+        sys.setprofile(None)
+    return count
+
+
+@pytest.mark.parametrize("d", [2, 3, 4])
+def test_voronoi_python_work_does_not_grow_with_the_points(d):
+    small, large = (np.random.default_rng(3).random((n, d)) for n in (300, 3000))
+    calls = [_python_calls(lambda: dewall.Voronoi(points)) for points in (small, large)]
+    assert calls[1] < calls[0] + 100, calls
+
+
+def _reference_ridges(vor, tri, group):
+    """Each Delaunay edge's Voronoi vertices as a set (-1 for a hull edge), from the definition."""
+    d = tri.ndim
+    around = {}
+    for s, simplex in enumerate(tri.simplices.tolist()):
+        for i in range(d + 1):
+            for j in range(i + 1, d + 1):
+                around.setdefault(tuple(sorted((simplex[i], simplex[j]))), set()).add(int(group[s]))
+    for facet in tri.convex_hull.tolist():
+        for i in range(d):
+            for j in range(i + 1, d):
+                around[tuple(sorted((facet[i], facet[j])))].add(-1)
+    return {edge: vertices for edge, vertices in around.items() if len(vertices) >= d}
+
+
+@pytest.mark.parametrize("d, kind", [(2, "uniform"), (2, "grid"), (3, "uniform"), (3, "grid"), (4, "uniform"),
+                                     (4, "grid")])
+def test_voronoi_ridges_and_regions_from_the_definition(d, kind):
+    n = {2: 400, 3: 343, 4: 81}[d]
+    points = dewall.generate(kind, n, dim=d, seed=5)
+    vor = dewall.Voronoi(points)
+    tri = dewall.Delaunay(points)
+    # the Voronoi vertex of each simplex: its circumcentre, shared by cospherical neighbours
+    centres = np.array([np.linalg.solve(2 * (v[1:] - v[0]), (v[1:] ** 2).sum(1) - (v[0] ** 2).sum())
+                        for v in points[tri.simplices]])
+    group = np.argmin(np.linalg.norm(centres[:, None, :] - vor.vertices[None, :, :], axis=2), axis=1)
+    np.testing.assert_allclose(vor.vertices[group], centres, atol=1e-9)
+    expected = _reference_ridges(vor, tri, group)
+    ours = {tuple(map(int, pq)): v for pq, v in zip(vor.ridge_points, vor.ridge_vertices)}
+    assert set(ours) == set(expected)
+    # Voronoi edges: the circumcentres of simplices across a facet, when they differ
+    simplex, _ = np.nonzero(tri.neighbors >= 0)
+    across = tri.neighbors[tri.neighbors >= 0]
+    adjacent = {frozenset(pair) for pair in zip(group[simplex].tolist(), group[across].tolist()) if pair[0] != pair[1]}
+
+    def in_order(cycle, closed):  # consecutive vertices joined by a Voronoi edge
+        pairs = list(zip(cycle, cycle[1:] + cycle[:1] if closed else cycle[1:]))
+        return len(cycle) < 2 or all(frozenset(pair) in adjacent for pair in pairs)
+
+    for edge, vertices in ours.items():
+        assert set(vertices) == expected[edge] and len(vertices) == len(set(vertices)), edge
+        if d == 3:  # a polygon around the edge, -1 first when unbounded
+            assert in_order(vertices[1:], False) if vertices[0] == -1 else in_order(vertices, True), edge
+    hull_points = set(tri.convex_hull.ravel().tolist())
+    for point, region in enumerate(vor.point_region):
+        vertices = vor.regions[region]
+        expected_region = set(group[np.nonzero((tri.simplices == point).any(axis=1))[0]].tolist())
+        assert set(vertices) == expected_region | ({-1} if point in hull_points else set()), point
+        if d == 2:  # a polygon around the point, -1 last when unbounded
+            assert in_order(vertices[:-1], False) if vertices[-1] == -1 else in_order(vertices, True), point
+
+
+def test_hull_equations_from_quickhull_without_lapack(monkeypatch):
+    """5-D: the facets' normals come with Quickhull's facets (no batched determinant per facet,
+    the half of the time that scipy's own speed left); equal to scipy's."""
+    scipy_spatial = pytest.importorskip("scipy.spatial")
+    points = np.random.default_rng(8).random((1500, 5))
+    theirs = scipy_spatial.ConvexHull(points)
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("np.linalg called per facet")
+
+    monkeypatch.setattr(np.linalg, "det", refuse)
+    monkeypatch.setattr(np.linalg, "solve", refuse)
+    hull = dewall.ConvexHull(points)
+    voronoi = dewall.Voronoi(points[:300, :3])  # circumcentres: the compiled module's too
+    monkeypatch.undo()
+    assert len(voronoi.vertices) > 0
+    mine = {tuple(sorted(f)): e for f, e in zip(hull.simplices.tolist(), hull.equations)}
+    other = {tuple(sorted(f)): e for f, e in zip(theirs.simplices.tolist(), theirs.equations)}
+    assert set(mine) == set(other)
+    for facet, equation in mine.items():
+        np.testing.assert_allclose(equation, other[facet], atol=1e-12)
+    assert hull.volume == pytest.approx(theirs.volume, rel=1e-12) and hull.area == pytest.approx(theirs.area, rel=1e-12)
