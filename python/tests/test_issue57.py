@@ -171,8 +171,11 @@ def test_mypy_stubtest_agrees_with_the_module(tmp_path):
     pytest.importorskip("mypy")  # Debian's python3-mypy (scripts/setup.sh)
     where = os.path.dirname(os.path.dirname(dewall.__file__))
     allowlist = os.path.join(os.path.dirname(os.path.abspath(__file__)), "stubtest_allowlist.txt")
+    env = dict(os.environ)
+    if os.path.basename(where) not in ("site-packages", "dist-packages"):  # installed: found as PEP 561 says
+        env["MYPYPATH"] = where
     run = subprocess.run([sys.executable, "-m", "mypy.stubtest", "dewall._dewall", "--allowlist", allowlist],
-                         capture_output=True, text=True, env={**os.environ, "MYPYPATH": where}, cwd=tmp_path)
+                         capture_output=True, text=True, env=env, cwd=tmp_path)
     assert run.returncode == 0, run.stdout + run.stderr
 
 
