@@ -341,7 +341,7 @@ class Voronoi(_FromDelaunay):
 def _collector_paused():
     """Python's cycle collector off while the compiled module builds the ridges' and regions' lists:
     lists of ints make no cycles, and the collector would otherwise walk them again and again as
-    their number grows (a third of the time of a 3-D Voronoi diagram)."""
+    their number grows."""
     enabled = gc.isenabled()
     gc.disable()
     try:

@@ -127,7 +127,7 @@ void transform_row(const double* x, const std::uint32_t* index, std::size_t widt
 
 /// The rows of a compressed table (row r: values[start[r] .. start[r + 1])) as a list of lists
 /// of ints, scipy's layout for Voronoi ridges and regions. Values are >= −1; each distinct
-/// value's int object is made once and shared (ints are immutable), which halves the time.
+/// value's int object is made once and shared (ints are immutable): fewer allocations.
 py::list nested_lists(const std::vector<std::size_t>& start, const std::vector<std::int32_t>& values) {
   const std::int32_t largest = values.empty() ? -1 : *std::max_element(values.begin(), values.end());
   std::vector<py::object> ints(static_cast<std::size_t>(largest) + 2);
@@ -279,8 +279,6 @@ class Triangulation {
     }, cells_);
   }
 
-  /// For each input point, the input index of the vertex that stands for it
-  /// (itself unless it duplicates an earlier point).
   /// Voronoi ridges and regions (voronoi.hpp) over `group`, one Voronoi vertex per simplex
   /// (int32, one per simplex): (ridge_points (r, 2) int32, ridge_vertices, regions), the
   /// last two lists of lists (regions: one per point, [] for a point in no simplex).
@@ -310,6 +308,8 @@ class Triangulation {
     }, cells_);
   }
 
+  /// For each input point, the input index of the vertex that stands for it
+  /// (itself unless it duplicates an earlier point).
   py::array first_occurrences() const {
     return dewall::kernel::with_dimension(dimension(), [&](auto d) {
       std::vector<std::uint32_t> first;
@@ -466,15 +466,8 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   return out;
 }
 
-/// The exact predicates on rows of point indices, for constructions the
-/// Python layer makes from them (furthest-site triangulations). `kind` 0:
-/// orientation of each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]);
-/// 1: the side of the last of D + 2 indices with respect to the circumsphere of
-/// the first D + 1 (+1 inside, 0 on, -1 outside; the simplex must be
-/// positively oriented), unperturbed; 2: the same with CGAL's symbolic
-/// perturbation (never 0; the query must not be a vertex of the simplex).
-/// Above 6 dimensions, or with `cgal_dd` (the tests compare the two), CGAL's dD
-/// predicates (high_dimension.hpp) with the same conventions.
+/// The circumcentre of each row of `simplices` (uint32, ndim + 1 columns), floating point
+/// (voronoi.hpp's circumcentres), for dewall.Voronoi's vertices; 2 … 6 dimensions.
 py::array circumcentres(py::handle points_in, py::handle simplices_in) {
   const py::array points = checked(points_in, float64, -1, "points");
   const long d = static_cast<long>(points.shape(1));
@@ -497,6 +490,15 @@ py::array circumcentres(py::handle points_in, py::handle simplices_in) {
   return out;
 }
 
+/// The exact predicates on rows of point indices, for constructions the
+/// Python layer makes from them (furthest-site triangulations). `kind` 0:
+/// orientation of each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]);
+/// 1: the side of the last of D + 2 indices with respect to the circumsphere of
+/// the first D + 1 (+1 inside, 0 on, -1 outside; the simplex must be
+/// positively oriented), unperturbed; 2: the same with CGAL's symbolic
+/// perturbation (never 0; the query must not be a vertex of the simplex).
+/// Above 6 dimensions, or with `cgal_dd` (the tests compare the two), CGAL's dD
+/// predicates (high_dimension.hpp) with the same conventions.
 py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind, bool cgal_dd) {
   if (kind < 0 || kind > 2) throw py::value_error("kind must be 0, 1 or 2");
   const bool sphere = kind > 0;

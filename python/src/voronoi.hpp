@@ -4,9 +4,11 @@
 // group index per simplex (neighbouring simplices with one circumsphere share
 // a group, hence a vertex). Topology only: no coordinates, no predicates.
 //
-// 1. Edges: every simplex's vertex pairs (lo < hi), bucketed by lo (a counting
-//    sort), each bucket sorted by (hi, simplex): the simplices around an edge in
-//    ascending order, and the edges in scipy's ridge order (lo, then hi).
+// 1. Edges: every simplex's vertex pairs (lo < hi), bucketed by lo, each bucket
+//    ordered by (hi, simplex) (counting sorts, stable, of incidences made in
+//    simplex order): the simplices around an edge side by side in ascending
+//    order, with what the walk needs of each, and the edges in scipy's ridge
+//    order (lo, then hi).
 // 2. A ridge's vertices: in 3-D the walk around the edge across the facets
 //    through it, always turning the same way (a cycle inside, opened at its
 //    smallest simplex; a chain from one hull facet to the other on the hull,
@@ -123,8 +125,9 @@ inline bool walk(std::span<const Edge_incidence> run, bool infinity_first, std::
 /// vertex j (−1 on the hull); group.size() == simplices.size(); every vertex
 /// index < vertex_count. \throws std::invalid_argument when the walk around
 /// an edge does not close (not a triangulation).
-/// Complexity: O(m·D² log D) for m simplices; every step reads only the edge's
-/// own incidences (sorted side by side), not the simplices.
+/// Complexity: O(m·D²) for m simplices, plus sorting each vertex's neighbours
+/// and a binary search per walk step; a walk reads only its edge's incidences,
+/// side by side, not the simplices.
 template <int D>
 Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> simplices,
                                   std::span<const std::array<std::int32_t, D + 1>> neighbors,

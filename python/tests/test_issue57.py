@@ -258,8 +258,8 @@ def test_voronoi_ridges_and_regions_from_the_definition(d, kind):
 
 
 def test_hull_equations_from_quickhull_without_lapack(monkeypatch):
-    """5-D: the facets' normals come with Quickhull's facets (no batched determinant per facet,
-    the half of the time that scipy's own speed left); equal to scipy's."""
+    """5-D: the facets' normals come with Quickhull's facets (no batched LAPACK determinant per
+    facet), and Voronoi's circumcentres from the module; the equations equal scipy's."""
     scipy_spatial = pytest.importorskip("scipy.spatial")
     points = np.random.default_rng(8).random((1500, 5))
     theirs = scipy_spatial.ConvexHull(points)
