@@ -352,22 +352,9 @@ def _collector_paused():
 
 
 def _merge(count, pairs):
-    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find)."""
-    parent = np.arange(count)
-
-    def root(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i, n in pairs:
-        ri, rn = root(i), root(n)
-        if ri != rn:
-            parent[max(ri, rn)] = min(ri, rn)
-    roots = np.array([root(i) for i in range(count)]) if len(pairs) else parent
-    _, group = np.unique(roots, return_inverse=True)
-    return group
+    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find,
+    in the compiled module)."""
+    return _dewall.merge_groups(count, np.ascontiguousarray(np.reshape(pairs, (-1, 2)), dtype=np.int32))
 
 
 def _circumcentres(points, simplices, group):

@@ -466,6 +466,25 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   return out;
 }
 
+/// voronoi.hpp's merge_groups over `pairs` ((k, 2) int32 simplex indices < count): int32 groups.
+py::array merge_groups(std::size_t count, py::handle pairs_in) {
+  const Element_type int32{'i', 4, "int32"};
+  const py::array pairs = checked(pairs_in, int32, 2, "pairs");
+  const auto* p = static_cast<const std::int32_t*>(pairs.data());
+  const auto k = static_cast<std::size_t>(pairs.shape(0));
+  if (count > max_index) throw py::value_error("more than 2^31 - 1 simplices");
+  for (std::size_t i = 0; i < 2 * k; ++i)
+    if (p[i] < 0 || static_cast<std::size_t>(p[i]) >= count) throw py::value_error("pairs: an index out of range");
+  std::vector<std::int32_t> group;
+  {
+    py::gil_scoped_release release;
+    group = dewall_python::merge_groups(count, std::span<const std::array<std::int32_t, 2>>(
+                                                   reinterpret_cast<const std::array<std::int32_t, 2>*>(p), k));
+  }
+  const auto n = static_cast<py::ssize_t>(group.size());
+  return adopt<std::int32_t>(std::move(group), {n});
+}
+
 /// The circumcentre of each row of `simplices` (uint32, ndim + 1 columns), floating point
 /// (voronoi.hpp's circumcentres), for dewall.Voronoi's vertices; 2 … 6 dimensions.
 py::array circumcentres(py::handle points_in, py::handle simplices_in) {
@@ -707,6 +726,7 @@ PYBIND11_MODULE(_dewall, m) {
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
   m.def("circumcentres", &circumcentres, py::arg("points"), py::arg("simplices"));
+  m.def("merge_groups", &merge_groups, py::arg("count"), py::arg("pairs"));
   m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"),
         py::arg("cgal_dd") = false);
   m.def("triangulate_dd", &triangulate_dd, py::arg("points"));

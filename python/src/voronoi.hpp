@@ -262,6 +262,33 @@ Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std:
   return out;
 }
 
+/// Groups of simplices joined by `pairs` (neighbours with one circumsphere), each simplex's
+/// group numbered in the order of the groups' first simplices: union-find, every root the
+/// smallest simplex of its group.
+/// \pre every index < count. Complexity: O((count + pairs) α(count)).
+inline std::vector<std::int32_t> merge_groups(std::size_t count, std::span<const std::array<std::int32_t, 2>> pairs) {
+  std::vector<std::int32_t> parent(count);
+  for (std::size_t i = 0; i < count; ++i) parent[i] = static_cast<std::int32_t>(i);
+  const auto root = [&](std::int32_t i) {
+    while (parent[static_cast<std::size_t>(i)] != i) {
+      parent[static_cast<std::size_t>(i)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+      i = parent[static_cast<std::size_t>(i)];
+    }
+    return i;
+  };
+  for (const auto& [a, b] : pairs) {
+    const std::int32_t ra = root(a), rb = root(b);
+    if (ra != rb) parent[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+  }
+  std::vector<std::int32_t> group(count);
+  std::int32_t groups = 0;
+  for (std::size_t i = 0; i < count; ++i) {  // a root comes before the rest of its group
+    const std::int32_t r = root(static_cast<std::int32_t>(i));
+    group[i] = r == static_cast<std::int32_t>(i) ? groups++ : group[static_cast<std::size_t>(r)];
+  }
+  return group;
+}
+
 /// The circumcentre of each simplex: c solving 2 (v_j − v_0)·(c − v_0) = |v_j − v_0|²,
 /// j = 1 … D, by Gaussian elimination with partial pivoting, relative to v_0 for
 /// accuracy. A flat simplex (no pivot) gets NaN.

@@ -199,8 +199,9 @@ def _python_calls(function):
 
 
 @pytest.mark.parametrize("d", [2, 3, 4])
-def test_voronoi_python_work_does_not_grow_with_the_points(d):
-    small, large = (np.random.default_rng(3).random((n, d)) for n in (300, 3000))
+@pytest.mark.parametrize("kind", ["uniform", "grid"])  # a grid: cospherical simplices, merged
+def test_voronoi_python_work_does_not_grow_with_the_points(d, kind):
+    small, large = (dewall.generate(kind, n, dim=d, seed=3) for n in (300, 3000))
     calls = [_python_calls(lambda: dewall.Voronoi(points)) for points in (small, large)]
     assert calls[1] < calls[0] + 100, calls
 
