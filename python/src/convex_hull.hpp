@@ -314,9 +314,8 @@ class Quickhull {
         int m = 0;
         for (int i = 0; i < D; ++i)
           if (i != k && i != j) r.key[m++] = v[i];
-        // insertion sort of m <= D - 2 keys (std::sort here trips GCC 12's -Warray-bounds)
-        for (int a = 1; a < m; ++a)
-          for (int b = a; b > 0 && r.key[b - 1] > r.key[b]; --b) std::swap(r.key[b - 1], r.key[b]);
+        // m is D - 2; the constant bound keeps GCC 12's -Warray-bounds from a false alarm
+        std::sort(r.key.begin(), r.key.begin() + (D - 2));
         ridges_.push_back(r);
       }
       created_.push_back(f);
