@@ -118,11 +118,21 @@ _WITH_REPR = {}
 
 def _with_repr(base):
     """scipy's interpolator class `base`, subclassed once for dewall's repr: what this module
-    returns stays an instance of scipy's class, for code that checks."""
+    returns stays an instance of scipy's class, for code that checks. Pickle finds the subclass
+    as this module's _<name> (__getattr__ below), whose own name is taken by a function."""
     if base not in _WITH_REPR:
         _WITH_REPR[base] = type(base.__name__, (base,), {"__repr__": _repr, "__module__": __name__,
-                                                         "__qualname__": base.__name__, "__doc__": base.__doc__})
+                                                         "__qualname__": "_" + base.__name__, "__doc__": base.__doc__})
     return _WITH_REPR[base]
+
+
+def __getattr__(name):
+    """_NearestNDInterpolator and _CloughTocher2DInterpolator, made on first use (they need scipy)."""
+    if name in ("_NearestNDInterpolator", "_CloughTocher2DInterpolator"):
+        import scipy.interpolate  # type: ignore[import]
+
+        return _with_repr(getattr(scipy.interpolate, name[1:]))
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class LinearNDInterpolator(_Interpolator):

@@ -119,6 +119,9 @@ def test_reprs(rng):
     scipy_interpolate = pytest.importorskip("scipy.interpolate")
     assert isinstance(nearest, scipy_interpolate.NearestNDInterpolator)
     np.testing.assert_array_equal(nearest(points[:5]), np.column_stack((values, values))[:5])
+    again = pickle.loads(pickle.dumps(nearest))  # as scipy's own: picklable
+    assert repr(again) == repr(nearest)
+    np.testing.assert_array_equal(again(points[:5]), nearest(points[:5]))
 
 
 # ---- type information -------------------------------------------------------------------------
