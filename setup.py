@@ -4,8 +4,8 @@ setuptools is the build backend because Debian 12 packages it (python3-setuptool
 it has no scikit-build-core or meson-python, and pip cannot fetch them offline.
 The extension is the CMake target dewall_python (python/CMakeLists.txt), built
 with only the libraries it links (no tests, CLI, benchmarks, examples or MPI) in
-setuptools' build_temp, with ccache when present, then copied where setuptools
-expects it.
+setuptools' build_temp, with Ninja and ccache when present, then copied where
+setuptools expects it.
 
 Jobs: DEWALL_BUILD_JOBS, else CMAKE_BUILD_PARALLEL_LEVEL, else every CPU this
 process may use. Progress: pip keeps a build's output to itself unless run with
@@ -97,6 +97,10 @@ def cmake_commands(build, jobs):
                  f"-DPython_EXECUTABLE={sys.executable}", "-DDEWALL_BUILD_PYTHON=ON",
                  "-DDEWALL_BUILD_TESTS=OFF", "-DDEWALL_BUILD_CLI=OFF", "-DDEWALL_BUILD_BENCH=OFF",
                  "-DDEWALL_BUILD_EXAMPLES=OFF", "-DDEWALL_BUILD_MPI=OFF"]
+    # Ninja compiles the module's sources alongside the libraries' (Make waits for the libraries
+    # first); a build folder keeps the generator it was made with.
+    if shutil.which("ninja") and not (Path(build) / "CMakeCache.txt").exists():
+        configure += ["-G", "Ninja"]
     if shutil.which("ccache"):
         configure.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
     return configure, ["cmake", "--build", str(build), "--target", "dewall_python", "--parallel", jobs]

@@ -5,6 +5,7 @@ The install itself takes minutes (bench/README.md has its time); these check its
 import importlib.util
 import io
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -38,6 +39,7 @@ def test_parallel_by_default_and_only_the_module(setup_py, monkeypatch, tmp_path
         assert f"-DDEWALL_BUILD_{part}=OFF" in configure
     assert f"-DPython_EXECUTABLE={sys.executable}" in configure
     assert build[-4:] == ["--target", "dewall_python", "--parallel", "3"]
+    assert ("Ninja" in configure) == bool(shutil.which("ninja"))
 
 
 def test_build_output_goes_to_the_log_and_the_terminal(setup_py, tmp_path):
