@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""dewall.Delaunay (with neighbors and transform), ConvexHull and interpolate.LinearNDInterpolator against scipy's,
-for the README.
+"""dewall.Delaunay (with neighbors and transform), ConvexHull, Voronoi and interpolate.LinearNDInterpolator against
+scipy's, for the README and bench/README.md.
 
     PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py build --sizes 1e6
     PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py hull
+    PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py \
+        voronoi --dims 3 --sizes 2e4 --repeat 5
     PYTHONPATH=build/python nice -n 15 taskset -c 0 /usr/bin/python3 bench/vs_scipy_hull_interpolate.py \
         interpolate --dims 2 --sizes 1e6
 
@@ -11,6 +13,10 @@ build: Delaunay of n uniform points in the unit square / cube (seed 1) with `nei
 `transform`, scipy's then dewall's (threads=1), each timed around all three.
 hull: ConvexHull of n uniform points in the unit square / cube (seed 1), scipy's then
 dewall's, each timed around the constructor; the facets compared as sets.
+voronoi: Voronoi of n uniform points in the unit box (seed 11, as issue 57's example), scipy's
+then dewall's, each timed around the constructor (which builds every attribute, the ridges'
+and regions' lists included, in both); the ridges compared as sets of point pairs. --grid:
+the points of an integer grid instead (every cell cospherical).
 interpolate: LinearNDInterpolator(points, values) built and then evaluated on a regular
 grid of about n queries over the unit box (row-major, the usual griddata layout; random
 queries make scipy's walk far slower: --random-queries); values compared where both are finite.
@@ -52,6 +58,18 @@ def hull(dims, sizes, repeat):
             same = facet_set(ours.simplices) == facet_set(theirs.simplices)
             print(f"ConvexHull {d}-D n={n:.0e}: dewall {ours_seconds:.3f} s, scipy {theirs_seconds:.3f} s, "
                   f"ratio {ours_seconds / theirs_seconds:.2f}, same facets: {same}", flush=True)
+
+
+def voronoi(dims, sizes, repeat, grid=False):
+    for d in dims:
+        for n in sizes:
+            points = dewall.generate("grid", n, dim=d) if grid else np.random.default_rng(11).random((n, d))
+            n = len(points)
+            theirs_seconds, theirs = timed(lambda: scipy.spatial.Voronoi(points), repeat)
+            ours_seconds, ours = timed(lambda: dewall.Voronoi(points), repeat)
+            same = facet_set(ours.ridge_points) == facet_set(theirs.ridge_points)
+            print(f"Voronoi {d}-D {'grid' if grid else 'uniform'} n={n}: dewall {ours_seconds:.3f} s, scipy {theirs_seconds:.3f} s, "
+                  f"ratio {ours_seconds / theirs_seconds:.2f}, same ridges: {same}", flush=True)
 
 
 def build(dims, sizes, repeat):
@@ -103,10 +121,13 @@ def interpolate(dims, sizes, random_queries=False):
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=("build", "hull", "interpolate"))
+    parser.add_argument("what", choices=("build", "hull", "voronoi", "interpolate"))
     parser.add_argument("--dims", type=int, nargs="+", default=[2, 3])
     parser.add_argument("--sizes", type=float, nargs="+", default=[1e5, 1e6])
-    parser.add_argument("--repeat", type=int, default=1, help="build, hull: the best of this many runs of each")
+    parser.add_argument("--repeat", type=int, default=1,
+                        help="build, hull, voronoi: the best of this many runs of each")
+    parser.add_argument("--grid", action="store_true",
+                        help="voronoi: points of an integer grid (dewall.generate('grid'): cospherical cells)")
     parser.add_argument("--random-queries", action="store_true",
                         help="interpolate: n uniform random queries instead of the grid (scipy's walk is slow on them)")
     args = parser.parse_args()
@@ -115,6 +136,8 @@ def main():
         build(args.dims, sizes, args.repeat)
     elif args.what == "hull":
         hull(args.dims, sizes, args.repeat)
+    elif args.what == "voronoi":
+        voronoi(args.dims, sizes, args.repeat, args.grid)
     else:
         interpolate(args.dims, sizes, args.random_queries)
 

@@ -15,11 +15,12 @@ Python section.
 from ._compiled import _dewall  # noqa: F401  (first: it finds the compiled module, or says how to build it)
 from ._certify import Certificate, Violation, certify
 from ._delaunay import Delaunay, tsearch
-from ._errors import DegenerateInput, InvalidInput, InvalidOption, QhullError
+from ._errors import DegenerateInput, InvalidInput, InvalidOption, InvalidShape, QhullError
 from ._generate import KINDS, generate
 from ._hull import ConvexHull, Voronoi
 from . import interpolate
 
 __all__ = ["Delaunay", "ConvexHull", "Voronoi", "tsearch", "interpolate", "certify", "Certificate", "Violation",
-           "generate", "KINDS", "InvalidInput", "DegenerateInput", "InvalidOption", "QhullError"]
+           "generate", "KINDS", "InvalidInput", "DegenerateInput", "InvalidOption", "InvalidShape",
+           "QhullError"]
 __version__ = "0.1.0"

@@ -112,7 +112,7 @@ def quickhull_facets(points):
     hull = _dewall.convex_hull(points)
     if hull is None:
         return None
-    facets, _, below, flat = hull
+    facets, _, below, flat, _ = hull
     d = points.shape[1]
     if d == 2:  # Quickhull's edges run clockwise: their ends, reversed, are the ring counterclockwise
         edges = extreme_ring_2d(points, facets[::-1, 1].astype(np.int64), collinear=flat)

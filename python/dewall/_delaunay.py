@@ -14,7 +14,7 @@ import numpy as np
 
 from . import _dewall
 from ._arrays import as_coordinates
-from ._errors import InvalidInput, InvalidOption, translated
+from ._errors import InvalidInput, InvalidOption, InvalidShape, translated
 from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
 from ._furthest_site import furthest_site_simplices
 from ._high_dimension import DimensionFreeTriangulation
@@ -438,7 +438,7 @@ class Delaunay:
         _refuse_masked(xi, "xi")
         xi = np.asarray(xi)
         if xi.ndim == 0 or xi.shape[-1] != self.ndim:
-            raise _ShapeError(f"wrong dimensionality in xi: shape (..., {self.ndim}) expected, not {xi.shape}")
+            raise InvalidShape(f"wrong dimensionality in xi: shape (..., {self.ndim}) expected, not {xi.shape}")
         eps = _DEFAULT_TOL if tol is None else float(tol)
         if not eps >= 0:
             raise ValueError(f"tol must be a non-negative number, not {tol!r}")
@@ -570,11 +570,6 @@ def _morton_order(x, low, high, bits=10):
         for axis in range(d):
             code |= ((cells[:, axis] >> np.uint64(bit)) & np.uint64(1)) << np.uint64(bit * d + axis)
     return np.argsort(code, kind="stable")
-
-
-class _ShapeError(TypeError, ValueError):
-    """A query array of the wrong shape: a ValueError as scipy raises ("wrong dimensionality in
-    xi"), and a TypeError as dewall raised before."""
 
 
 def barycentric(transform, x):

@@ -5,6 +5,8 @@
         └── DegenerateInput     too few distinct points, points that do not span E^d
     ValueError
     └── InvalidOption           a qhull_options token dewall refuses
+    ValueError, TypeError
+    └── InvalidShape            a query array of the wrong shape (find_simplex's xi)
 
 DegenerateInput and InvalidOption also subclass `QhullError`: scipy's
 `scipy.spatial.QhullError` when scipy is importable (scipy raises it for the
@@ -18,10 +20,10 @@ infinite coordinate is InvalidInput alone: scipy raises a plain ValueError there
 from ._dewall import InvalidInput
 
 try:
-    from scipy.spatial import QhullError
+    from scipy.spatial import QhullError  # type: ignore[import]
 except ImportError:  # scipy is optional
 
-    class QhullError(RuntimeError):
+    class QhullError(RuntimeError):  # type: ignore[no-redef]
         """Stands for scipy.spatial.QhullError when scipy is not installed."""
 
 
@@ -33,6 +35,18 @@ class DegenerateInput(InvalidInput, QhullError):
 class InvalidOption(ValueError, QhullError):
     """A qhull_options token that would change the answer, or that is not a Qhull option."""
 
+
+class InvalidShape(ValueError, TypeError):
+    """A query array of the wrong shape: a ValueError, as scipy raises ("wrong dimensionality in
+    xi"), and a TypeError, as dewall raises for the points' shape."""
+
+
+# Tracebacks and reprs name the classes where users import them (dewall.InvalidInput), not the
+# private modules that define them; pickle finds them there too.
+for _public in (InvalidInput, DegenerateInput, InvalidOption, InvalidShape):
+    _public.__module__ = "dewall"
+if QhullError.__module__ == __name__:
+    QhullError.__module__ = "dewall"
 
 # The library's messages for the conditions scipy reports as QhullError (dewall/detail/input.hpp).
 _DEGENERATE_PREFIXES = ("need at least ", "the points do not span ")

@@ -7,6 +7,8 @@ of its edges. Topology is exact; coordinates, normals, volumes are floating
 point from the points.
 """
 
+import contextlib
+import gc
 import re
 
 import numpy as np
@@ -19,6 +21,9 @@ from ._delaunay import (Delaunay, _check_qhull_options, _check_threads, _determi
                         _refuse_masked, _with_added_points)
 
 __all__ = ["ConvexHull", "Voronoi"]
+
+# The compiled module's kernel covers 2 … 6 dimensions (dewall._delaunay).
+_MAX_COMPILED_DIMENSION = 6
 
 
 class _FromDelaunay:
@@ -144,14 +149,18 @@ class ConvexHull:
             self._from_delaunay(Delaunay(points, False, False, self._qhull_options, engine=self._engine,
                                          threads=self._threads))
         else:
-            facets, neighbors, below, flat = hull
+            facets, neighbors, below, flat, normals = hull
             if d == 2:
                 self._polygon(facets, flat)
             else:
                 if d == 3 and flat:
                     facets, below, _ = merge_flat_faces_3d(points, facets, below)
-                    neighbors = ridge_pairs(facets)
-                self._facets(facets, neighbors, below)
+                    neighbors, normals = ridge_pairs(facets), None
+                self._facets(facets, neighbors, below, normals)
+
+    def __repr__(self):
+        return (f"<dewall.ConvexHull: {self.npoints} points in E^{self.ndim}, {len(self.vertices)} vertices, "
+                f"{self.nsimplex} facets>")
 
     @property
     def min_bound(self):
@@ -204,25 +213,28 @@ class ConvexHull:
         x0, y0 = x.mean(), y.mean()  # the shoelace formula about the vertices' mean, for accuracy
         self.volume = float(((x - x0) * (yn - y0) - (xn - x0) * (y - y0)).sum() / 2)
 
-    def _facets(self, facets, neighbors, inside):
+    def _facets(self, facets, neighbors, inside, normal=None):
         """3-D and up: facets (each with `inside`, a point strictly on its inner side), their
-        neighbours; equations, area, and the volume as a sum of cones from the vertices' mean."""
+        neighbours, their normals either way round if known (Quickhull's); equations, area, and
+        the volume as a sum of cones from the vertices' mean."""
         d = self.ndim
         factorial = float(np.prod(np.arange(1, d + 1)))
         self.simplices = np.ascontiguousarray(facets, dtype=np.int32)
         self.neighbors = np.ascontiguousarray(neighbors, dtype=np.int32)
-        self.vertices = np.unique(self.simplices).astype(np.int32)
-        corners = self.points[self.simplices]  # (m, d, d)
-        edges = corners[:, 1:, :] - corners[:, :1, :]  # (m, d - 1, d)
-        normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
-        inner = self.points[inside]
-        normal *= np.where(np.einsum("ij,ij->i", normal, inner - corners[:, 0, :]) > 0, -1.0, 1.0)[:, None]
-        length = np.linalg.norm(normal, axis=1)
+        self.vertices = np.flatnonzero(np.bincount(self.simplices.ravel(), minlength=self.npoints)).astype(np.int32)
+        origin = self.points[self.simplices[:, 0]]  # each facet's first corner
+        if normal is None:  # the generalised cross product of the edges from the first corner
+            edges = self.points[self.simplices[:, 1:]] - origin[:, None, :]  # (m, d - 1, d)
+            normal = np.stack([(-1) ** k * _determinants(np.delete(edges, k, axis=2)) for k in range(d)], axis=1)
+        else:
+            normal = np.array(normal)  # scaled in place below
+        normal *= np.where(np.einsum("ij,ij->i", normal, self.points[inside] - origin) > 0, -1.0, 1.0)[:, None]
+        length = np.sqrt(np.einsum("ij,ij->i", normal, normal))
         # each facet's cone from the vertices' mean: |normal| (d-1)! facet measure times the height, over d!
         centre = self.points[self.vertices].mean(axis=0)
-        self.volume = float(np.einsum("ij,ij->i", normal, corners[:, 0, :] - centre).sum() / factorial)
+        self.volume = float(np.einsum("ij,ij->i", normal, origin - centre).sum() / factorial)
         normal /= length[:, None]
-        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, corners[:, 0, :])))
+        self.equations = np.column_stack((normal, -np.einsum("ij,ij->i", normal, origin)))
         self.area = float(length.sum() / (factorial / d))  # |generalised cross product| = (d-1)! facet measure
 
 
@@ -256,91 +268,34 @@ class Voronoi(_FromDelaunay):
 
     def _compute(self):
         tri = self._tri
-        d, simplices = self.ndim, tri.simplices.astype(np.int64)
         group = _merge(tri.nsimplex, tri._triangulation.cospherical_neighbours())
         self.vertices = _circumcentres(self.points, tri.simplices, group)
-        if d == 2:
-            self.ridge_points, self.ridge_vertices = self._ridges_2d(group)
-        elif d == 3:
-            self.ridge_points, self.ridge_vertices = self._ridges_3d(group)
+        compiled = getattr(tri._triangulation, "voronoi", None)  # 2 … 6 dimensions (python/src/voronoi.hpp)
+        if compiled is not None:
+            with _collector_paused():
+                self.ridge_points, self.ridge_vertices, around = compiled(np.ascontiguousarray(group, dtype=np.int32))
         else:
-            self.ridge_points, self.ridge_vertices = self._ridges(group, simplices)
+            self.ridge_points, self.ridge_vertices = self._ridges(group, tri.simplices.astype(np.int64))
+            around = self._regions(group)
         # Regions: the vertices around each distinct point (first occurrences; [] for no vertex).
         first = np.arange(self.npoints)
         dup = tri.duplicates
         first[dup[:, 0]] = dup[:, 1]
-        around = self._regions_2d(group) if d == 2 else self._regions(group)
         # Qhull's point at infinity (option Qz: scipy's default, not with furthest_site or incremental)
         # has an empty region; Qhull's lands among the others, dewall's first.
         at_infinity = (_option_in_effect(tri._qhull_options, "Qz") and not self.furthest_site
                        and not tri._incremental)
-        self.regions, self.point_region = [[]] if at_infinity else [], np.empty(self.npoints, dtype=np.intp)
-        for i in np.nonzero(first == np.arange(self.npoints))[0]:
-            self.point_region[i] = len(self.regions)
-            self.regions.append(around[i])
+        kept = np.nonzero(first == np.arange(self.npoints))[0]
+        self.regions = ([[]] if at_infinity else []) + (around if kept.size == self.npoints
+                                                       else [around[i] for i in kept.tolist()])
+        self.point_region = np.empty(self.npoints, dtype=np.intp)
+        self.point_region[kept] = np.arange(kept.size) + (1 if at_infinity else 0)
         self.point_region[dup[:, 0]] = self.point_region[dup[:, 1]]
 
-    def _ridges_2d(self, group):
-        """2-D ridges, vectorised: each triangle edge with its two Voronoi vertices (the groups of
-        the triangles on either side, -1 first beyond the hull); none inside a cocircular cell."""
-        tri = self._tri
-        s, j = np.nonzero(np.ones(tri.neighbors.shape, dtype=bool))
-        n = tri.neighbors[s, j].astype(np.int64)
-        once = (n == -1) | (s < n)
-        s, j, n = s[once], j[once], n[once]
-        mine, theirs = group[s], np.where(n == -1, -1, group[np.maximum(n, 0)])
-        proper = mine != theirs
-        pairs = np.sort(np.column_stack((tri.simplices[s, (j + 1) % 3], tri.simplices[s, (j + 2) % 3])), axis=1)
-        pairs, vertices = pairs[proper], np.column_stack((theirs, mine))[proper]
-        order = np.lexsort((pairs[:, 1], pairs[:, 0]))
-        return pairs[order].astype(np.int32), vertices[order].tolist()
-
-    def _ridges_3d(self, group):
-        """3-D ridges, vectorised: the tetrahedra around each edge in cyclic order (the walk across
-        the facets through the edge, always turning the same way, by list ranking), their groups
-        deduplicated, -1 first for a hull edge; kept when at least 3 distinct vertices remain."""
-        tri = self._tri
-        simplices = tri.simplices.astype(np.int64)
-        m = simplices.shape[0]
-        a, b = np.triu_indices(4, 1)  # the 6 edges of a tetrahedron, as positions (i, j), i < j
-        others = np.array([[k for k in range(4) if k not in (i, j)] for i, j in zip(a, b)])  # (6, 2)
-        # parity of the permutation (i, j, k, l) of (0, 1, 2, 3): the turning direction around i -> j
-        odd = np.array([(np.linalg.det(np.eye(4)[[i, j, k, l]]) < 0) for (i, j), (k, l) in zip(zip(a, b), others)])
-        owner = np.repeat(np.arange(m), 6)
-        slot = np.tile(np.arange(6), m)
-        p, q = simplices[owner, a[slot]], simplices[owner, b[slot]]
-        flip = p > q  # edges as (smaller, larger): the direction of p -> q flips the turn
-        # cross the facet opposite others[.., 0] or [.., 1]: the same turn in every tetrahedron
-        leave = others[slot, (odd[slot] ^ flip).astype(int)]
-        edge_key = np.minimum(p, q) * self.npoints + np.maximum(p, q)
-        keys, edge = np.unique(edge_key, return_inverse=True)
-        after = tri.neighbors[owner, leave].astype(np.int64)
-        valid = after >= 0
-        # the same edge's incidence in the next tetrahedron: its slot there
-        order = np.lexsort((owner, edge))  # incidences sorted by (edge, owner): find (edge, after) by search
-        sorted_key = edge[order] * m + owner[order]
-        target = np.searchsorted(sorted_key, edge * m + np.maximum(after, 0))
-        successor = np.where(valid, order[np.minimum(target, order.size - 1)], -1)
-        order, chain = _walk_order(successor, edge, keys.size)
-        edges, groups = edge[order], group[owner[order]]
-        new = np.r_[True, (edges[1:] != edges[:-1]) | (groups[1:] != groups[:-1])]
-        edges, groups = edges[new], groups[new]
-        ridges = np.split(groups, np.cumsum(np.bincount(edges, minlength=keys.size))[:-1])
-        ridge_points, ridge_vertices = [], []
-        for e, part in enumerate(ridges):
-            around = part.tolist()
-            if chain[e]:
-                around.insert(0, -1)
-            elif len(around) > 1 and around[0] == around[-1]:
-                around.pop()
-            if len(around) >= 3:
-                ridge_points.append(divmod(int(keys[e]), self.npoints))
-                ridge_vertices.append(around)
-        return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
-
     def _ridges(self, group, simplices):
-        """Ridges in 4-D and up: each Delaunay edge whose dual has at least d distinct vertices
-        (unordered: a ridge there is a polytope of dimension 3 or more)."""
+        """Ridges in 7-D and up (below, the compiled module's, by the same rules): each Delaunay
+        edge whose dual has at least d distinct vertices (unordered: a ridge there is a polytope
+        of dimension 3 or more)."""
         tri, d = self._tri, self.ndim
         a, b = np.triu_indices(d + 1, 1)
         edges = np.sort(np.stack((simplices[:, a], simplices[:, b]), axis=2), axis=2).reshape(-1, 2)
@@ -363,7 +318,8 @@ class Voronoi(_FromDelaunay):
         return np.array(ridge_points, dtype=np.int32).reshape(-1, 2), ridge_vertices
 
     def _regions(self, group):
-        """Regions in 3-D and up: the groups of each point's simplices (ascending), -1 first on the hull."""
+        """Regions in 7-D and up (as the compiled module's from 3-D up): the groups of each point's
+        simplices (ascending), -1 first on the hull."""
         tri, d = self._tri, self.ndim
         pairs = np.unique(np.column_stack((tri.simplices.ravel(), np.repeat(group, d + 1))), axis=0)
         on_hull = np.zeros(self.npoints, dtype=bool)
@@ -371,34 +327,9 @@ class Voronoi(_FromDelaunay):
         split = np.split(pairs[:, 1], np.cumsum(np.bincount(pairs[:, 0], minlength=self.npoints))[:-1])
         return [([-1] if on_hull[i] else []) + part.tolist() if part.size else [] for i, part in enumerate(split)]
 
-    def _regions_2d(self, group):
-        """2-D regions counterclockwise, vectorised: the triangles around each point, in the order
-        of the walk across the edges through it (topology, not angles), by list ranking. An
-        unbounded region runs from the triangle after the hull to the one before it, then -1."""
-        tri = self._tri
-        simplices = tri.simplices.astype(np.int64)
-        m = simplices.shape[0]
-        incidence = np.arange(3 * m)
-        owner, position, vertex = incidence // 3, incidence % 3, simplices.ravel()
-        # the next triangle counterclockwise around `vertex`: across the edge (vertex, the one after next)
-        after = tri.neighbors[owner, (position + 1) % 3].astype(np.int64)
-        valid = after >= 0
-        where = np.argmax(simplices[np.maximum(after, 0)] == vertex[:, None], axis=1)
-        successor = np.where(valid, 3 * after + where, -1)
-        order, chain = _walk_order(successor, vertex, self.npoints)  # chain: a point on the hull
-        sites, groups = vertex[order], group[owner[order]]
-        new = np.r_[True, (sites[1:] != sites[:-1]) | (groups[1:] != groups[:-1])]  # merged cells: one vertex
-        sites, groups = sites[new], groups[new]
-        counts = np.bincount(sites, minlength=self.npoints)
-        regions = [part.tolist() for part in np.split(groups, np.cumsum(counts)[:-1])]
-        for i, region in enumerate(regions):
-            if not region:
-                continue
-            if chain[i]:
-                region.append(-1)
-            elif len(region) > 1 and region[0] == region[-1]:  # a merged cell met again at the wrap
-                region.pop()
-        return regions
+    def __repr__(self):
+        return (f"<dewall.Voronoi: {self.npoints} points in E^{self.ndim}, {len(self.vertices)} vertices, "
+                f"{len(self.ridge_points)} ridges, {len(self.regions)} regions>")
 
     @property
     def ridge_dict(self):
@@ -406,58 +337,32 @@ class Voronoi(_FromDelaunay):
         return {tuple(map(int, pq)): v for pq, v in zip(self.ridge_points, self.ridge_vertices)}
 
 
-def _walk_order(successor, key, key_count):
-    """The incidences (0 … len(successor) − 1) grouped by `key`, each group in walk order, and
-    per key whether its incidences form a chain (an open walk: a hull point, a hull edge).
-
-    successor[i]: the next incidence of the same key (−1: none). A key's incidences form one
-    chain (a hull point's triangles, a hull edge's tetrahedra) or one cycle; a cycle is opened
-    before its smallest incidence. List ranking by pointer jumping gives each incidence its
-    steps to the end of its chain; sorting by (key, −steps) is then the walk."""
-    successor = successor.copy()
-    count = successor.size
-    incidence = np.arange(count)
-    valid = successor >= 0
-    has_predecessor = np.zeros(count, dtype=bool)
-    has_predecessor[successor[valid]] = True
-    chain = np.zeros(key_count, dtype=bool)  # a key with a first incidence: a chain
-    chain[key[~has_predecessor]] = True
-    cycle = ~chain[key]
-    start = np.full(key_count, count)
-    np.minimum.at(start, key[cycle], incidence[cycle])
-    successor[cycle & (successor == start[key])] = -1  # open each cycle before its first incidence
-    rank, pointer = (successor >= 0).astype(np.int64), successor.copy()
-    while (pointer >= 0).any():
-        live = np.nonzero(pointer >= 0)[0]
-        target = pointer[live]
-        rank[live] += rank[target]
-        pointer[live] = pointer[target]
-    return np.lexsort((-rank, key)), chain
+@contextlib.contextmanager
+def _collector_paused():
+    """Python's cycle collector off while the compiled module builds the ridges' and regions' lists:
+    lists of ints make no cycles, and the collector would otherwise walk them again and again as
+    their number grows."""
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if enabled:
+            gc.enable()
 
 
 def _merge(count, pairs):
-    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find)."""
-    parent = np.arange(count)
-
-    def root(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    for i, n in pairs:
-        ri, rn = root(i), root(n)
-        if ri != rn:
-            parent[max(ri, rn)] = min(ri, rn)
-    roots = np.array([root(i) for i in range(count)]) if len(pairs) else parent
-    _, group = np.unique(roots, return_inverse=True)
-    return group
+    """Group index (0, 1, … in order of first simplex) of each simplex, joining the pairs (union-find,
+    in the compiled module)."""
+    return _dewall.merge_groups(count, np.ascontiguousarray(np.reshape(pairs, (-1, 2)), dtype=np.int32))
 
 
 def _circumcentres(points, simplices, group):
     """Circumcentre of the first simplex of each group: solve 2 (v_j - v_0) . c = |v_j|^2 - |v_0|^2,
-    relative to v_0 for accuracy."""
+    relative to v_0 for accuracy (in the compiled module up to 6 dimensions)."""
     _, first = np.unique(group, return_index=True)
+    if points.shape[1] <= _MAX_COMPILED_DIMENSION:
+        return _dewall.circumcentres(points, np.ascontiguousarray(simplices[first], dtype=np.uint32))
     v = points[simplices[first]]
     edges = v[:, 1:, :] - v[:, :1, :]
     rhs = 0.5 * np.einsum("ijk,ijk->ij", edges, edges)

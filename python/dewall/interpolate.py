@@ -53,6 +53,18 @@ def _rescaling(points):
     return offset, scale
 
 
+def _repr(self):
+    """Like dewall.Delaunay's: the points, the simplices when there are any, the values' shape."""
+    n, d = self.points.shape
+    parts = [f"{n} points in E^{d}"]
+    nsimplex = getattr(getattr(self, "tri", None), "nsimplex", None)
+    if nsimplex is not None:
+        parts.append(f"{nsimplex} simplices")
+    shape = (n,) + tuple(self.values_shape) if hasattr(self, "values_shape") else np.shape(self.values)
+    parts.append(f"values of shape {shape}")
+    return f"<dewall.interpolate.{type(self).__name__}: {', '.join(parts)}>"
+
+
 class _Interpolator:
     """What the interpolators share: the triangulation (built or given), values, rescaling, calling."""
 
@@ -86,6 +98,8 @@ class _Interpolator:
         if self.tri is None:
             self.tri = Delaunay(self.points)
 
+    __repr__ = _repr
+
     def __call__(self, *args):
         ndim = self.points.shape[1]
         xi = _coordinates(args, ndim)
@@ -97,6 +111,28 @@ class _Interpolator:
             flat = (flat - self.offset) / self.scale
         out = self._evaluate(flat)
         return out.reshape(shape[:-1] + self.values_shape)
+
+
+_WITH_REPR = {}
+
+
+def _with_repr(base):
+    """scipy's interpolator class `base`, subclassed once for dewall's repr: what this module
+    returns stays an instance of scipy's class, for code that checks. Pickle finds the subclass
+    as this module's _<name> (__getattr__ below), whose own name is taken by a function."""
+    if base not in _WITH_REPR:
+        _WITH_REPR[base] = type(base.__name__, (base,), {"__repr__": _repr, "__module__": __name__,
+                                                         "__qualname__": "_" + base.__name__, "__doc__": base.__doc__})
+    return _WITH_REPR[base]
+
+
+def __getattr__(name):
+    """_NearestNDInterpolator and _CloughTocher2DInterpolator, made on first use (they need scipy)."""
+    if name in ("_NearestNDInterpolator", "_CloughTocher2DInterpolator"):
+        import scipy.interpolate  # type: ignore[import]
+
+        return _with_repr(getattr(scipy.interpolate, name[1:]))
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class LinearNDInterpolator(_Interpolator):
@@ -158,7 +194,7 @@ def as_scipy_delaunay(tri):
     paraboloid_*, bounds, vertex_to_simplex, vertex_neighbor_vertices, …) is dewall's, copied
     writable (scipy's Cython code takes writable buffers); no Qhull run. Its methods
     (find_simplex, …) are scipy's, running on dewall's simplices. Needs scipy."""
-    from scipy.spatial import Delaunay as ScipyDelaunay
+    from scipy.spatial import Delaunay as ScipyDelaunay  # type: ignore[import]
 
     class DewallAsScipy(ScipyDelaunay):
         points = property(lambda self: self._points)
@@ -192,7 +228,9 @@ def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxi
     dewall's, handed to scipy as a scipy.spatial.Delaunay; gradients, patches and the
     location of queries (scipy's walk, with its tolerance) are scipy's code. Needs scipy.
     """
-    from scipy.interpolate import CloughTocher2DInterpolator as ScipyCloughTocher
+    from scipy.interpolate import CloughTocher2DInterpolator  # type: ignore[import]
+
+    ScipyCloughTocher = _with_repr(CloughTocher2DInterpolator)
 
     if isinstance(points, Delaunay):
         if rescale:
@@ -218,7 +256,7 @@ def NearestNDInterpolator(x, y, rescale=False, tree_options=None):
     """scipy.interpolate.NearestNDInterpolator itself (a k-d tree, no triangulation). Needs scipy."""
     from scipy.interpolate import NearestNDInterpolator as ScipyNearest
 
-    return ScipyNearest(x, y, rescale=rescale, tree_options=tree_options)
+    return _with_repr(ScipyNearest)(x, y, rescale=rescale, tree_options=tree_options)
 
 
 def griddata(points, values, xi, method="linear", fill_value=np.nan, rescale=False):

@@ -55,6 +55,10 @@ struct Convex_hull {
   std::vector<std::uint32_t> below;
   /// Whether two neighbouring facets lie in one hyperplane (exact orientation zero).
   bool flat = false;
+  /// For each facet, a normal to its hyperplane in floating point, not unit, either way round:
+  /// the cofactors of the orientation determinant along the last row (the generalised cross
+  /// product of the edges from the first vertex).
+  std::vector<std::array<double, D>> normals;
 };
 
 namespace detail {
@@ -310,7 +314,8 @@ class Quickhull {
         int m = 0;
         for (int i = 0; i < D; ++i)
           if (i != k && i != j) r.key[m++] = v[i];
-        std::sort(r.key.begin(), r.key.begin() + m);
+        // m is D - 2; the constant bound keeps GCC 12's -Warray-bounds from a false alarm
+        std::sort(r.key.begin(), r.key.begin() + (D - 2));
         ridges_.push_back(r);
       }
       created_.push_back(f);
@@ -393,6 +398,7 @@ class Quickhull {
     for (const std::int32_t f : order) {
       index[f] = static_cast<std::int32_t>(out.facets.size());
       out.facets.push_back(facets_[f].v);
+      out.normals.push_back(facets_[f].normal);
     }
     for (const std::int32_t f : order) {
       std::array<std::int32_t, D> nb;

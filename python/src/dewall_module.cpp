@@ -39,6 +39,7 @@
 #include "dewall/locate.hpp"
 #include "convex_hull.hpp"
 #include "high_dimension.hpp"
+#include "voronoi.hpp"
 
 namespace py = pybind11;
 
@@ -123,6 +124,26 @@ py::dict statistics_dict(const dewall::Statistics& s, double seconds) {
 
 /// One row of scipy's transform array; defined with barycentric_transforms below.
 void transform_row(const double* x, const std::uint32_t* index, std::size_t width, double rcond_limit, double* o);
+
+/// The rows of a compressed table (row r: values[start[r] .. start[r + 1])) as a list of lists
+/// of ints, scipy's layout for Voronoi ridges and regions. Values are >= −1; each distinct
+/// value's int object is made once and shared (ints are immutable): fewer allocations.
+py::list nested_lists(const std::vector<std::size_t>& start, const std::vector<std::int32_t>& values) {
+  const std::int32_t largest = values.empty() ? -1 : *std::max_element(values.begin(), values.end());
+  std::vector<py::object> ints(static_cast<std::size_t>(largest) + 2);
+  py::list out(start.size() - 1);
+  for (std::size_t r = 0; r + 1 < start.size(); ++r) {
+    PyObject* row = PyList_New(static_cast<py::ssize_t>(start[r + 1] - start[r]));
+    if (!row) throw py::error_already_set();
+    for (std::size_t k = start[r]; k < start[r + 1]; ++k) {
+      py::object& value = ints[static_cast<std::size_t>(values[k] + 1)];
+      if (!value) value = py::int_(values[k]);
+      PyList_SET_ITEM(row, static_cast<py::ssize_t>(k - start[r]), value.inc_ref().ptr());
+    }
+    PyList_SET_ITEM(out.ptr(), static_cast<py::ssize_t>(r), row);
+  }
+  return out;
+}
 
 /// A triangulation of one dimension: simplices, and the neighbors once asked.
 template <int D>
@@ -255,6 +276,35 @@ class Triangulation {
       }
       const auto rows = static_cast<py::ssize_t>(pairs.size());
       return adopt<std::int32_t>(std::move(pairs), {rows, 2});
+    }, cells_);
+  }
+
+  /// Voronoi ridges and regions (voronoi.hpp) over `group`, one Voronoi vertex per simplex
+  /// (int32, one per simplex): (ridge_points (r, 2) int32, ridge_vertices, regions), the
+  /// last two lists of lists (regions: one per point, [] for a point in no simplex).
+  py::tuple voronoi(py::handle group_in) {
+    return std::visit([&](auto& c) {
+      constexpr int D = std::decay_t<decltype(c)>::dimension;
+      if (!py::isinstance<py::array>(group_in)) throw py::type_error("group must be a NumPy array");
+      const auto group = py::reinterpret_borrow<py::array>(group_in);
+      if (group.dtype().kind() != 'i' || group.dtype().itemsize() != 4 || group.ndim() != 1 ||
+          !(group.flags() & py::array::c_style) || static_cast<std::size_t>(group.shape(0)) != c.simplices.size())
+        throw py::type_error("group must be a C-contiguous int32 array with one entry per simplex");
+      const std::span<const std::int32_t> groups(static_cast<const std::int32_t*>(group.data()), c.simplices.size());
+      for (const std::int32_t g : groups)
+        if (g < 0) throw py::value_error("group: negative index");
+      compute_neighbors(c);
+      dewall_python::Voronoi_topology t;
+      {
+        py::gil_scoped_release release;
+        t = dewall_python::voronoi_topology<D>(static_cast<std::size_t>(points_.shape(0)),
+                                               std::span<const std::array<std::uint32_t, D + 1>>(c.simplices),
+                                               std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), groups);
+      }
+      const auto rows = static_cast<py::ssize_t>(t.ridge_points.size());
+      py::list regions = nested_lists(t.region_start, t.region_vertices);
+      py::list ridges = nested_lists(t.ridge_start, t.ridge_vertices);
+      return py::make_tuple(adopt<std::int32_t>(std::move(t.ridge_points), {rows, 2}), ridges, regions);
     }, cells_);
   }
 
@@ -416,6 +466,49 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   return out;
 }
 
+/// voronoi.hpp's merge_groups over `pairs` ((k, 2) int32 simplex indices < count): int32 groups.
+py::array merge_groups(std::size_t count, py::handle pairs_in) {
+  const Element_type int32{'i', 4, "int32"};
+  const py::array pairs = checked(pairs_in, int32, 2, "pairs");
+  const auto* p = static_cast<const std::int32_t*>(pairs.data());
+  const auto k = static_cast<std::size_t>(pairs.shape(0));
+  if (count > max_index) throw py::value_error("more than 2^31 - 1 simplices");
+  for (std::size_t i = 0; i < 2 * k; ++i)
+    if (p[i] < 0 || static_cast<std::size_t>(p[i]) >= count) throw py::value_error("pairs: an index out of range");
+  std::vector<std::int32_t> group;
+  {
+    py::gil_scoped_release release;
+    group = dewall_python::merge_groups(count, std::span<const std::array<std::int32_t, 2>>(
+                                                   reinterpret_cast<const std::array<std::int32_t, 2>*>(p), k));
+  }
+  const auto n = static_cast<py::ssize_t>(group.size());
+  return adopt<std::int32_t>(std::move(group), {n});
+}
+
+/// The circumcentre of each row of `simplices` (uint32, ndim + 1 columns), floating point
+/// (voronoi.hpp's circumcentres), for dewall.Voronoi's vertices; 2 … 6 dimensions.
+py::array circumcentres(py::handle points_in, py::handle simplices_in) {
+  const py::array points = checked(points_in, float64, -1, "points");
+  const long d = static_cast<long>(points.shape(1));
+  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto count = static_cast<std::size_t>(simplices.shape(0));
+  const auto* index = static_cast<const std::uint32_t*>(simplices.data());
+  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
+    if (index[i] >= n) throw py::value_error("simplices: index " + std::to_string(index[i]) + " is not a point index");
+  py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(d)});
+  double* o = out.mutable_data();
+  dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
+    constexpr int D = dim();
+    py::gil_scoped_release release;
+    dewall_python::circumcentres<D>(static_cast<const double*>(points.data()),
+                                    std::span<const std::array<std::uint32_t, D + 1>>(
+                                        reinterpret_cast<const std::array<std::uint32_t, D + 1>*>(index), count),
+                                    o);
+  });
+  return out;
+}
+
 /// The exact predicates on rows of point indices, for constructions the
 /// Python layer makes from them (furthest-site triangulations). `kind` 0:
 /// orientation of each row of D + 1 indices (sign of det[p1 - p0, …, pD - p0]);
@@ -486,7 +579,8 @@ py::object convex_hull(py::handle points_in) {
     const auto m = static_cast<py::ssize_t>(hull->facets.size());
     return py::make_tuple(adopt<std::int32_t>(std::move(hull->facets), {m, D}),
                           adopt<std::int32_t>(std::move(hull->neighbors), {m, D}),
-                          adopt<std::int32_t>(std::move(hull->below), {m}), hull->flat);
+                          adopt<std::int32_t>(std::move(hull->below), {m}), hull->flat,
+                          adopt<double>(std::move(hull->normals), {m, D}));
   });
 }
 
@@ -624,12 +718,15 @@ PYBIND11_MODULE(_dewall, m) {
       .def("locate", &Triangulation::locate, py::arg("xi"))
       .def("locate_weights", &Triangulation::locate_weights, py::arg("xi"), py::arg("rcond_limit"))
       .def("first_occurrences", &Triangulation::first_occurrences)
-      .def("cospherical_neighbours", &Triangulation::cospherical_neighbours);
+      .def("cospherical_neighbours", &Triangulation::cospherical_neighbours)
+      .def("voronoi", &Triangulation::voronoi, py::arg("group"));
 
   m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
+  m.def("circumcentres", &circumcentres, py::arg("points"), py::arg("simplices"));
+  m.def("merge_groups", &merge_groups, py::arg("count"), py::arg("pairs"));
   m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"),
         py::arg("cgal_dd") = false);
   m.def("triangulate_dd", &triangulate_dd, py::arg("points"));
