@@ -47,6 +47,10 @@ bool looks_like_tetgen(std::string_view head, bool whole, Tetgen_file kind) {
   if (std::any_of(h.begin(), h.end(), [](std::int64_t v) { return v < 0; }) || h[0] < 1) return false;
   const std::int64_t vertices = h[1];  // coordinates of a point, or vertices of a simplex
   if (kind == Tetgen_file::node ? (vertices < 2 || vertices > 6) : (vertices < 3 || vertices > 7)) return false;
+  // The rows must be the header's count: more than it (or, when the whole
+  // input is here, fewer) and the file is not what the header says.
+  const auto data_rows = static_cast<std::int64_t>(rows.size()) - 1;
+  if (data_rows > h[0] || (whole && data_rows != h[0])) return false;
   std::int64_t width = 1 + vertices;
   for (std::size_t i = 2; i < h.size(); ++i) width += h[i];
   if (width > 64) return false;

@@ -309,3 +309,16 @@ TEST_CASE("newcomer: PLY, OFF and OBJ vertices are points; a triangulation goes 
   CHECK(gmsh.out.find("(2 simplices, 4 points") != std::string::npos);
   CHECK(cli("draw g41.msh g41.msh -o g41.svg").status == 0);
 }
+
+TEST_CASE("newcomer: plain points that start like a TetGen header stay plain", "[cli][newcomer]") {
+  const auto cli = fresh("newcomer_test_tetgen_lookalike");
+  // A grid whose first row reads as "1 point of E^2", then rows numbered 1, 2, …: more rows than that count.
+  std::string grid;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) grid += std::to_string(1 + i) + " " + std::to_string(2 + j) + " " + std::to_string(k) + "\n";
+  cli.write("grid.txt", grid);
+  const auto r = cli("triangulate grid.txt --stats -o t.txt");
+  CHECK(r.status == 0);
+  CHECK(r.err.find("points=27 ") == 0);
+}
