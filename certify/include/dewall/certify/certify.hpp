@@ -342,7 +342,7 @@ class Certifier {
   template <class Row>
   void check_facets() {
     using Record = Facet_record<D, Row>;
-    const std::size_t n = points_.size(), m = rows_.size();
+    const std::size_t n = points_.size();
     const std::size_t ranges = std::clamp<std::size_t>(n / 4096, 1, 256);
     const auto range_first = [&](std::size_t r) { return n * r / ranges; };
     std::vector<std::size_t> range_facets(ranges, 0);
@@ -351,8 +351,6 @@ class Certifier {
     // A window's records take at most the memory of the rows (and 16 MB at
     // least): the working set stays within the input's own size.
     const std::size_t budget = std::max<std::size_t>(std::size_t{1} << 24, rows_.size_bytes()) / sizeof(Record);
-    const std::size_t row_chunks = std::clamp<std::size_t>(m / 65536, 1, 256);
-    const bool concurrent = threads_for(row_chunks) > 1;
     // The windows: consecutive ranges, as many as fit the budget (one at least).
     std::vector<std::size_t> window_first{0};
     std::size_t largest = 0;
@@ -370,9 +368,9 @@ class Certifier {
     for (std::size_t w = 0; w + 1 < window_first.size() && !stop(); ++w) {
       const std::size_t first = window_first[w], last = window_first[w + 1];
       Facet_window<D, Row> window(facet_count_, range_first(first), range_first(last), storage);
-      for_each_parallel(row_chunks, [&](std::size_t k) {
-        window.file(rows_, status_, m * k / row_chunks, m * (k + 1) / row_chunks, concurrent);
-      });
+      // One part of the window's vertices per thread, each reading every row.
+      const std::size_t a = range_first(first), b = range_first(last), parts = threads_for(b - a);
+      for_each_parallel(parts, [&](std::size_t k) { window.file(rows_, status_, a + (b - a) * k / parts, a + (b - a) * (k + 1) / parts); });
       for_each_parallel(last - first, [&](std::size_t i) {
         const std::size_t r = first + i;
         // The points of a bucket are its vertex's neighbours, at random places:

@@ -12,15 +12,14 @@
 // Steps:
 //  1. count the facets per smallest vertex (the caller, while it validates rows);
 //  2. cut the vertices into windows whose records fit a memory budget;
-//  3. per window, file the records of every valid row (rows in parallel:
-//     atomic cursors; the order inside a bucket does not matter, it is sorted);
+//  3. per window, file the records of every valid row (ranges of vertices in
+//     parallel; the order inside a bucket does not matter, it is sorted);
 //  4. per bucket, sort by (facet, row) and hand out each group of equal facets.
 // Exact: keys are compared, never hashed. Topology only: nothing here knows the kernel.
 #pragma once
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -72,11 +71,25 @@ struct Facet_record {
       if (rest[i] != o.rest[i]) return false;
     return true;
   }
-  /// By facet, then by row (std::array's comparisons call memcmp: slow on 2 words).
+  /// By facet, then by row (std::array's comparisons call memcmp: slow on 2
+  /// words). Up to 3D the facet and the row fit one 128-bit key: one comparison.
   friend bool operator<(const Facet_record& a, const Facet_record& b) {
-    for (std::size_t i = 0; i < a.rest.size(); ++i)
-      if (a.rest[i] != b.rest[i]) return a.rest[i] < b.rest[i];
-    return a.tag < b.tag;
+    if constexpr (D <= 3) {
+      return a.key() < b.key();
+    } else {
+      for (std::size_t i = 0; i < a.rest.size(); ++i)
+        if (a.rest[i] != b.rest[i]) return a.rest[i] < b.rest[i];
+      return a.tag < b.tag;
+    }
+  }
+
+ private:
+  __extension__ using Key = unsigned __int128;  // GCC and Clang have it on 64-bit targets
+  Key key() const {
+    static_assert(D <= 3);
+    std::uint64_t facet = 0;
+    for (std::uint32_t v : rest) facet = (facet << 32) | v;
+    return (static_cast<Key>(facet) << 64) | static_cast<std::uint64_t>(tag);
   }
 };
 
@@ -115,30 +128,26 @@ class Facet_window {
   /// is v. `storage` holds the records (grown when too small; reused from one
   /// window to the next, so that its pages are touched once).
   Facet_window(std::span<const std::uint32_t> counts, std::size_t first, std::size_t last, std::vector<Record>& storage)
-      : first_(first), start_(last - first + 1, 0), cursor_(last - first, 0) {
+      : first_(first), start_(last - first + 1, 0) {
     for (std::size_t v = first; v < last; ++v) start_[v - first + 1] = start_[v - first] + counts[v];
+    next_.assign(start_.begin(), start_.end() - 1);
     if (storage.size() < start_.back()) storage.resize(start_.back());
     records_ = storage.data();
   }
 
   std::size_t first() const { return first_; }
-  std::size_t last() const { return first_ + cursor_.size(); }
+  std::size_t last() const { return first_ + next_.size(); }
 
-  /// Files the facets of rows [row_first, row_last). Disjoint row ranges may be
-  /// filed at once on different threads when `concurrent`.
+  /// Files the facets of all rows whose smallest vertex is in [v_first,
+  /// v_last), inside the window. Disjoint vertex ranges may be filed at once on
+  /// different threads: they write disjoint buckets (no atomic counters, whose
+  /// locked instructions would stall every scattered store behind them).
   void file(std::span<const std::array<std::uint32_t, D + 1>> rows, std::span<const std::uint8_t> status,
-            std::size_t row_first, std::size_t row_last, bool concurrent) {
-    const std::size_t a = first(), b = last();
-    for (std::size_t r = row_first; r < row_last; ++r) {
+            std::size_t v_first, std::size_t v_last) {
+    for (std::size_t r = 0; r < rows.size(); ++r) {
       if (status[r] == row_invalid) continue;
-      for_each_facet_record<D, Row>(rows[r], r, status[r] == row_sorted_positive, a, b,
-                                    [&](std::size_t v, const Record& rec) {
-                                      std::uint32_t& c = cursor_[v - a];
-                                      const std::uint32_t k =
-                                          concurrent ? std::atomic_ref<std::uint32_t>(c).fetch_add(1, std::memory_order_relaxed)
-                                                     : c++;
-                                      records_[start_[v - a] + k] = rec;
-                                    });
+      for_each_facet_record<D, Row>(rows[r], r, status[r] == row_sorted_positive, v_first, v_last,
+                                    [&](std::size_t v, const Record& rec) { records_[next_[v - first_]++] = rec; });
     }
   }
 
@@ -186,8 +195,8 @@ class Facet_window {
   }
 
   std::size_t first_;
-  std::vector<std::size_t> start_;
-  std::vector<std::uint32_t> cursor_;
+  std::vector<std::size_t> start_;  // the buckets, then where each one's next record goes
+  std::vector<std::size_t> next_;
   Record* records_;
 };
 
@@ -214,7 +223,7 @@ void match_facets(std::size_t vertex_count, std::span<const std::array<std::uint
   const auto counts = facet_counts<D>(vertex_count, rows, status);
   std::vector<Facet_record<D, Row>> storage;
   Facet_window<D, Row> window(counts, 0, vertex_count, storage);
-  window.file(rows, status, 0, rows.size(), false);
+  window.file(rows, status, 0, vertex_count);
   window.for_groups(0, vertex_count, group);
 }
 
