@@ -212,9 +212,11 @@ TEST_CASE("certify facet table: sorting a row keeps its parity", "[certify][face
 
 TEST_CASE("certify facet table: the same reports as the former certifier, 2D-6D, mutants", "[certify][facet_table]") {
   std::mt19937_64 rng(6161);
-  same_reports<2>(3000, rng);
-  same_reports<3>(2000, rng);
-  same_reports<4>(600, rng);
-  same_reports<5>(200, rng);
-  same_reports<6>(90, rng);
+  same_reports<2>(2000, rng);
+  same_reports<3>(1000, rng);
+  same_reports<4>(300, rng);
+  same_reports<5>(120, rng);
+  same_reports<6>(60, rng);
+  // Several ranges of rows (16384 each) and of vertices (4096 each), merged in order.
+  same_reports_with_mutants<3>(dewall::test::uniform<3>(10000, rng), "uniform, several ranges", rng);
 }
