@@ -63,10 +63,17 @@ Run triangulate_table(io::Point_table& table, const Options& options, const Simp
 template <int D>
 certify::Report certify_table(const io::Point_table& points, const io::Simplex_table& table,
                               const certify::Options& options) {
-  std::vector<certify::Simplex_indices<D>> s(table.size());
-  for (std::size_t r = 0; r < s.size(); ++r)
-    for (int j = 0; j <= D; ++j) s[r][static_cast<std::size_t>(j)] = table.indices[r * (D + 1) + static_cast<std::size_t>(j)];
-  return certify::certify<kernel::Filtered_kernel_d<D>>(kernel_points<D>(points), s, options);
+  // The rows as they were read, without a copy (10^7 points: 1 GB): an array
+  // of D + 1 indices has their layout.
+  static_assert(sizeof(certify::Simplex_indices<D>) == (D + 1) * sizeof(std::uint32_t) &&
+                alignof(certify::Simplex_indices<D>) == alignof(std::uint32_t));
+  const std::span<const certify::Simplex_indices<D>> s(
+      reinterpret_cast<const certify::Simplex_indices<D>*>(table.indices.data()), table.size());
+  // Likewise the coordinates: a Point_d<D> is D doubles.
+  static_assert(sizeof(kernel::Point_d<D>) == D * sizeof(double) && alignof(kernel::Point_d<D>) == alignof(double));
+  const std::span<const kernel::Point_d<D>> p(reinterpret_cast<const kernel::Point_d<D>*>(points.coordinates.data()),
+                                              points.coordinates.size() / D);
+  return certify::certify<kernel::Filtered_kernel_d<D>>(p, s, options);
 }
 
 }  // namespace

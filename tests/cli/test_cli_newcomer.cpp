@@ -262,7 +262,7 @@ TEST_CASE("newcomer: --engine dewall on points on one sphere warns before the wo
   CHECK(cli("triangulate square.txt --engine dewall -o t.txt").err.empty());
 }
 
-TEST_CASE("newcomer: PLY, OFF and OBJ vertices are points; a triangulation goes out as gmsh", "[cli][newcomer]") {
+TEST_CASE("newcomer: PLY, OFF and OBJ vertices are points, a triangulation goes out as gmsh", "[cli][newcomer]") {
   const auto cli = fresh("newcomer_test_mesh_files");
   REQUIRE(cli("generate uniform 120 --seed 8 -q -o p.txt").status == 0);
   const std::string points = slurp(cli.path("p.txt"));

@@ -48,9 +48,12 @@
 //     the canonical one. A facet that passes 5 only unperturbed is cospherical
 //     and flipped against the perturbation: Delaunay, not canonical.
 //
-// Cost: O(n) expected to find duplicates (hashing), O(m·D) predicates and O(m·(D+1)) face
-// bookkeeping by a counting sort on the smallest vertex (face_grouping.hpp),
-// for n points and m simplices: less than building the triangulation.
+// Cost: O(n) expected to find duplicates (hashing), one orientation test per
+// simplex and one sphere test per interior facet, and O(m·(D+1)) facet records
+// filed by a counting sort on the smallest vertex (facet_table.hpp), for n
+// points and m simplices. Memory: the rows are read in place (no copy), one
+// status byte per row, and the facet records of one window of vertices at a
+// time, at most the size of the rows.
 #pragma once
 
 #include <algorithm>
@@ -72,6 +75,7 @@
 #endif
 
 #include "dewall/certify/face_grouping.hpp"
+#include "dewall/certify/facet_table.hpp"
 #include "dewall/certify/report.hpp"
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
@@ -122,9 +126,12 @@ class Certifier {
     check_points();
     if (!stop()) check_simplices();
     if (!stop()) check_vertices();
-    if (!stop()) check_facets();
-    if (!stop() && !cells_.empty()) check_boundary();
-    if (!stop() && !cells_.empty()) check_covering();
+    if (!stop()) {
+      if (2 * rows_.size() < (std::size_t{1} << 32)) check_facets<std::uint32_t>();
+      else check_facets<std::uint64_t>();
+    }
+    if (!stop() && first_row_ != npos) check_boundary();
+    if (!stop() && first_row_ != npos) check_covering();
     // Structural violations first, then the Delaunay ones, then notes.
     auto& v = report_.violations;
     v = std::move(fatal_);
@@ -136,6 +143,15 @@ class Certifier {
   }
 
  private:
+  /// A boundary facet: its vertices (increasing), the apex of its simplex,
+  /// whether (facet…, apex) is positively oriented, and the simplex's row.
+  struct Boundary_facet {
+    std::array<std::uint32_t, D> facet;
+    std::uint32_t apex;
+    bool positive;
+    std::size_t row;
+  };
+
   bool stop() const { return !options_.all && !fatal_.empty(); }
   void fail(Violation v) {
     if (!stop()) fatal_.push_back(std::move(v));
@@ -146,18 +162,26 @@ class Certifier {
     for (std::size_t i = 0; i <= D; ++i) p[i] = &points_[c[i]];
     return p;
   }
-  std::vector<std::uint32_t> facet_of(const Cell& c, int skip) const {
-    std::vector<std::uint32_t> f;
-    for (int i = 0; i <= D; ++i)
-      if (i != skip) f.push_back(c[static_cast<std::size_t>(i)]);
-    std::sort(f.begin(), f.end());
-    return f;
+  /// The points of a facet and an apex, positively oriented: (facet…, apex),
+  /// with the first two swapped when that order is negative.
+  Cell_points oriented(std::span<const std::uint32_t> facet, std::uint32_t apex, bool positive) const {
+    Cell_points p;
+    for (std::size_t i = 0; i < D; ++i) p[i] = &points_[facet[i]];
+    p[D] = &points_[apex];
+    if (!positive) std::swap(p[0], p[1]);
+    return p;
   }
-  /// orientation of `cell` with its vertex at position i replaced by point q.
-  kernel::Sign replaced(const Cell& cell, int i, std::uint32_t q) const {
-    Cell_points p = at(cell);
-    p[static_cast<std::size_t>(i)] = &points_[q];
-    return orientation_(p);
+  /// Asks for point v's cache lines (a point may straddle two).
+  void prefetch(std::uint32_t v) const {
+    const char* p = reinterpret_cast<const char*>(&points_[v]);
+    __builtin_prefetch(p);
+    __builtin_prefetch(p + sizeof(Point) - 1);
+  }
+  static std::vector<std::uint32_t> without(std::span<const std::uint32_t> sorted, std::uint32_t skip) {
+    std::vector<std::uint32_t> f;
+    for (std::uint32_t v : sorted)
+      if (v != skip) f.push_back(v);
+    return f;
   }
 
   /// Non-finite coordinates (when the kernel's points are doubles), then the
@@ -180,42 +204,94 @@ class Certifier {
       if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }
 
-  /// Indices, repeated vertices, later duplicates, degeneracy; orient
-  /// positively. Ranges of rows on all cores (one orientation test each),
-  /// merged in order as far as the serial walk would have gone.
+  /// Indices, repeated vertices, later duplicates, degeneracy, on all cores
+  /// (one orientation test per row), merged in order as far as the serial walk
+  /// would have gone. The same pass counts each valid row's facets by smallest
+  /// vertex, marks its vertices used, and collects the rows that contain the
+  /// witness point (the covering test, reported in its turn).
   void check_simplices() {
+    const std::size_t m = rows_.size(), n = points_.size();
+    status_.assign(m, row_invalid);
+    used_.assign(n, 0);
+    facet_count_.assign(n, 0);
+    // The witness lies in the first proper simplex, found before the others are checked.
+    {
+      std::vector<Violation> ignored;
+      for (std::size_t r = 0; r < m && first_row_ == npos; ++r)
+        if (checked_simplex(r, ignored)) first_row_ = r;
+    }
+    std::optional<Witness_point<K>> witness;
+    if (first_row_ != npos) {
+      first_cell_ = rows_[first_row_];
+      if (orientation_(at(first_cell_)) == kernel::NEGATIVE) std::swap(first_cell_[0], first_cell_[1]);
+      witness.emplace(k_, at(first_cell_));
+    }
     struct Results {
-      std::vector<Cell> cells;
-      std::vector<std::size_t> rows;
+      std::vector<std::size_t> covering;
       std::vector<Violation> fatal;
     };
-    const std::size_t m = rows_.size();
     const std::size_t ranges = std::clamp<std::size_t>(m / 16384, 1, 256);
     std::vector<Results> results(ranges);
+    const bool concurrent = threads_for(ranges) > 1;
     for_each_parallel(ranges, [&](std::size_t k) {
       Results& out = results[k];
-      for (std::size_t r = m * k / ranges; r < m * (k + 1) / ranges && (options_.all || out.fatal.empty()); ++r)
-        if (const auto c = checked_simplex(r, out.fatal)) {
-          out.cells.push_back(*c);
-          out.rows.push_back(r);
-        }
+      const std::size_t end = m * (k + 1) / ranges;
+      for (std::size_t r = m * k / ranges; r < end && (options_.all || out.fatal.empty()); ++r) {
+        // The rows come in order, their points at random: ask for them a few rows ahead.
+        if (r + 8 < end)
+          for (std::uint32_t v : rows_[r + 8])
+            if (v < n) prefetch(v);
+        const auto s = checked_simplex(r, out.fatal);
+        if (!s) continue;
+        status_[r] = *s;
+        const Sorted_row<D + 1> sorted = sort_row(rows_[r]);
+        count(facet_count_[sorted.v[0]], D, concurrent);
+        count(facet_count_[sorted.v[1]], 1, concurrent);
+        for (std::uint32_t v : sorted.v) std::atomic_ref<std::uint8_t>(used_[v]).store(1, std::memory_order_relaxed);
+        if (r != first_row_ && contains_witness(*witness, sorted.v, *s == row_sorted_positive)) out.covering.push_back(r);
+      }
     });
-    used_.assign(points_.size(), false);
     for (Results& res : results) {
       if (stop()) break;
       for (Violation& v : res.fatal) fail(std::move(v));
-      for (std::size_t i = 0; i < res.cells.size(); ++i) {
-        for (std::uint32_t v : res.cells[i]) used_[v] = true;  // a vertex of a proper simplex only
-        cells_.push_back(res.cells[i]);
-        cell_row_.push_back(res.rows[i]);
-      }
+      covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
     }
   }
 
-  /// Row r positively oriented, or nothing (its violations appended to `fatal`).
-  std::optional<Cell> checked_simplex(std::size_t r, std::vector<Violation>& fatal) const {
+  static void count(std::uint32_t& c, std::uint32_t k, bool concurrent) {
+    if (concurrent) std::atomic_ref<std::uint32_t>(c).fetch_add(k, std::memory_order_relaxed);
+    else c += k;
+  }
+
+  /// Whether the witness point lies inside a proper simplex (vertices in
+  /// increasing order, with that order's orientation).
+  bool contains_witness(const Witness_point<K>& o, const Cell& sorted, bool positive) const {
+    if constexpr (kernel::approximate_coordinates_are_exact<K>) {
+      // o is infinitesimally close to its anchor, an input point: a cell whose
+      // bounding box (exact: the coordinates are the points) misses the anchor
+      // cannot contain o.
+      const auto coords = k_.approximate_coordinates_object();
+      const auto& x = coords(o.anchor());
+      for (int j = 0; j < D; ++j) {
+        bool below = true, above = true;
+        for (std::uint32_t v : sorted) {
+          const double c = coords(points_[v])[static_cast<std::size_t>(j)];
+          below = below && x[static_cast<std::size_t>(j)] < c;
+          above = above && x[static_cast<std::size_t>(j)] > c;
+        }
+        if (below || above) return false;
+      }
+    }
+    Cell_points p = at(sorted);
+    if (!positive) std::swap(p[0], p[1]);
+    return o.inside(p);
+  }
+
+  /// Row r's status (the orientation of its sorted vertices), or nothing (its
+  /// violations appended to `fatal`).
+  std::optional<Row_status> checked_simplex(std::size_t r, std::vector<Violation>& fatal) const {
     const std::size_t n = points_.size();
-    Cell c = rows_[r];
+    const Cell& c = rows_[r];
     bool ok = true;
     for (std::uint32_t v : c)
       if (v >= n) {
@@ -223,8 +299,7 @@ class Certifier {
         ok = false;
       }
     if (!ok) return std::nullopt;
-    Cell sorted = c;
-    std::sort(sorted.begin(), sorted.end());
+    const Cell sorted = sort_row(c).v;
     if (const auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end()) {
       fatal.push_back({.rule = Rule::repeated_vertex, .simplex = r, .point = *dup});
       return std::nullopt;
@@ -237,44 +312,88 @@ class Certifier {
       }
     }
     if (!ok) return std::nullopt;
-    const kernel::Sign s = orientation_(at(c));
+    const kernel::Sign s = orientation_(at(sorted));
     if (s == kernel::ZERO) {
       fatal.push_back({.rule = Rule::degenerate_simplex, .simplex = r});
       return std::nullopt;
     }
-    if (s == kernel::NEGATIVE) std::swap(c[0], c[1]);
-    return c;
+    return s == kernel::POSITIVE ? row_sorted_positive : row_sorted_negative;
   }
-
 
   void check_vertices() {
     for (std::size_t i = 0; i < points_.size() && !stop(); ++i)
       if (!bad_point_[i] && first_[i] == i && !used_[i]) fail({.rule = Rule::point_not_a_vertex, .point = i});
   }
 
-  /// What the facet checks of a range of buckets found, in bucket order.
+  /// What the facet checks of a range of vertices found, in vertex order.
   struct Facet_results {
-    std::vector<Face_ref> boundary;
+    std::vector<Boundary_facet> boundary;
     std::vector<Violation> fatal, delaunay, notes;
     std::size_t interior_facets = 0, cospherical_facets = 0;
   };
 
   /// Facet matching, opposite sides, and the local Delaunay tests. The facets
-  /// are filed by smallest vertex, and ranges of those buckets are checked on
-  /// all cores (most of the certifier's time; docs/engines.md). The ranges
-  /// are fixed by the number of points
-  /// and merged in order, each as far as the serial walk would have gone (it
-  /// stops at the first fatal violation, and tests no sphere after the first
+  /// are filed by smallest vertex (facet_table.hpp), a window of vertices at a
+  /// time so that the records stay within a budget of memory, and ranges of
+  /// vertices are checked on all cores. The ranges are fixed by the number of
+  /// points and merged in order, each as far as the serial walk would have gone
+  /// (it stops at the first fatal violation, and tests no sphere after the first
   /// Delaunay one), so the report is the same for any number of threads.
+  template <class Row>
   void check_facets() {
-    const Face_buckets<D + 1> buckets(points_.size(), std::span<const Cell>(cells_));
+    using Record = Facet_record<D, Row>;
     const std::size_t n = points_.size();
     const std::size_t ranges = std::clamp<std::size_t>(n / 4096, 1, 256);
+    const auto range_first = [&](std::size_t r) { return n * r / ranges; };
+    std::vector<std::size_t> range_facets(ranges, 0);
+    for (std::size_t r = 0; r < ranges; ++r)
+      for (std::size_t v = range_first(r); v < range_first(r + 1); ++v) range_facets[r] += facet_count_[v];
+    // A window's records take at most the memory of the rows (and 16 MB at
+    // least): the working set stays within the input's own size.
+    const std::size_t budget = std::max<std::size_t>(std::size_t{1} << 24, rows_.size_bytes()) / sizeof(Record);
+    // The windows: consecutive ranges, as many as fit the budget (one at least).
+    std::vector<std::size_t> window_first{0};
+    std::size_t largest = 0;
+    for (std::size_t r = 0, total = 0; r < ranges; ++r) {
+      if (r > window_first.back() && total + range_facets[r] > budget) {
+        window_first.push_back(r);
+        total = 0;
+      }
+      total += range_facets[r];
+      largest = std::max(largest, total);
+    }
+    window_first.push_back(ranges);
+    std::vector<Record> storage(largest);
     std::vector<Facet_results> results(ranges);
-    for_each_parallel(ranges, [&](std::size_t r) {
-      buckets.for_buckets(n * r / ranges, n * (r + 1) / ranges,
-                          [&](std::span<const Face_ref> g) { check_facet_group(g, results[r]); });
-    });
+    for (std::size_t w = 0; w + 1 < window_first.size() && !stop(); ++w) {
+      const std::size_t first = window_first[w], last = window_first[w + 1];
+      Facet_window<D, Row> window(facet_count_, range_first(first), range_first(last), storage);
+      // One part of the window's vertices per thread, each reading every row.
+      const std::size_t a = range_first(first), b = range_first(last), parts = threads_for(b - a);
+      for_each_parallel(parts, [&](std::size_t k) { window.file(rows_, status_, a + (b - a) * k / parts, a + (b - a) * (k + 1) / parts); });
+      for_each_parallel(last - first, [&](std::size_t i) {
+        const std::size_t r = first + i;
+        // The points of a bucket are its vertex's neighbours, at random places:
+        // asked for one bucket ahead, their cache misses overlap.
+        window.for_groups(
+            range_first(r), range_first(r + 1),
+            [&](std::size_t v, std::span<const Record> g) {
+              check_facet_group<Row>(static_cast<std::uint32_t>(v), g, results[r]);
+            },
+            [&](std::size_t v, std::span<const Record> next) {
+              prefetch(static_cast<std::uint32_t>(v));
+              for (const Record& rec : next) {
+                prefetch(rec.apex);
+                for (std::uint32_t u : rec.rest) prefetch(u);
+              }
+            });
+      });
+      merge(std::span<Facet_results>(results).subspan(first, last - first));
+    }
+    std::vector<std::uint32_t>().swap(facet_count_);
+  }
+
+  void merge(std::span<Facet_results> results) {
     for (Facet_results& r : results) {
       if (stop()) break;
       boundary_.insert(boundary_.end(), r.boundary.begin(), r.boundary.end());
@@ -285,45 +404,46 @@ class Certifier {
       delaunay_.insert(delaunay_.end(), r.delaunay.begin(), r.delaunay.end());
       for (Violation& v : r.notes)
         if (options_.all || notes_.empty()) notes_.push_back(std::move(v));
+      r = {};
     }
   }
 
-  /// The checks of one facet's group (its simplices), into `out`.
-  void check_facet_group(std::span<const Face_ref> g, Facet_results& out) const {
+  /// The checks of one facet (smallest vertex v) and its simplices, into `out`.
+  template <class Row>
+  void check_facet_group(std::uint32_t v, std::span<const Facet_record<D, Row>> g, Facet_results& out) const {
     if (!options_.all && !out.fatal.empty()) return;
-    const Cell& c1 = cells_[g[0].row];
-    const int i1 = g[0].position;
+    std::array<std::uint32_t, D> facet;
+    facet[0] = v;
+    std::copy(g[0].rest.begin(), g[0].rest.end(), facet.begin() + 1);
+    const auto face = [&] { return std::vector<std::uint32_t>(facet.begin(), facet.end()); };
     if (g.size() == 1) {
-      out.boundary.push_back({g[0].row, i1});
+      out.boundary.push_back({facet, g[0].apex, g[0].positive(), g[0].row()});
       return;
     }
     if (g.size() > 2) {
-      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = cell_row_[g[0].row],
-                           .other_simplex = cell_row_[g[1].row], .face = facet_of(c1, i1)});
+      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
       return;
     }
-    const Cell& c2 = cells_[g[1].row];
-    const std::uint32_t a = c1[static_cast<std::size_t>(i1)], b = c2[static_cast<std::size_t>(g[1].position)];
+    const std::uint32_t a = g[0].apex, b = g[1].apex;
     if (a == b) {
-      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row]});
+      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = g[0].row(), .other_simplex = g[1].row()});
       return;
     }
-    // c1 is positive, so a is on the positive side of the facet: b must be on the negative one.
-    if (replaced(c1, i1, b) != kernel::NEGATIVE) {
-      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = cell_row_[g[0].row],
-                           .other_simplex = cell_row_[g[1].row], .face = facet_of(c1, i1)});
+    // Both rows were found proper: (facet, a) and (facet, b) have known, non-zero
+    // orientations, and the apexes lie on opposite sides exactly when these differ.
+    if (g[0].positive() == g[1].positive()) {
+      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
       return;
     }
     ++out.interior_facets;
     if (!options_.all && !out.delaunay.empty()) return;  // one witness is enough
     std::array<const Point*, D + 2> s;
-    const Cell_points p = at(c1);
+    const Cell_points p = oriented(facet, a, g[0].positive());
     std::copy(p.begin(), p.end(), s.begin());
     s[D + 1] = &points_[b];
     const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     const auto witness = [&](Rule rule) {
-      return Violation{.rule = rule, .simplex = cell_row_[g[0].row], .other_simplex = cell_row_[g[1].row],
-                       .face = facet_of(c1, i1), .point = b};
+      return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = b};
     };
     if (side == kernel::ON_POSITIVE_SIDE) {
       out.delaunay.push_back(witness(Rule::not_locally_delaunay));
@@ -344,14 +464,19 @@ class Certifier {
     return std::max(1u, std::thread::hardware_concurrency());
   }
 
+  /// The threads for_each_parallel(count, …) runs on.
+  unsigned threads_for(std::size_t count) const {
+    const unsigned threads = options_.threads ? options_.threads : available_cores();
+    return static_cast<unsigned>(std::min<std::size_t>(threads, count));
+  }
+
   /// Calls f(0) … f(count − 1), on up to Options::threads threads (0: all
   /// cores), then rethrows the exception of the first call that threw (out
   /// of memory, say). Each worker sets the floating-point environment the
   /// kernel's filters assume (floating_point.hpp).
   template <class F>
   void for_each_parallel(std::size_t count, F&& f) const {
-    unsigned threads = options_.threads ? options_.threads : available_cores();
-    threads = static_cast<unsigned>(std::min<std::size_t>(threads, count));
+    const unsigned threads = threads_for(count);
     std::vector<std::exception_ptr> errors(count);
     std::atomic<std::size_t> next{0};
     auto work = [&] {
@@ -380,74 +505,44 @@ class Certifier {
   /// locally convex at every ridge, facing away from the witness point.
   void check_boundary() {
     report_.boundary_facets = boundary_.size();
-    // Boundary facets as rows of D vertices, in their cell's order.
     std::vector<std::array<std::uint32_t, D>> facets(boundary_.size());
-    for (std::size_t b = 0; b < boundary_.size(); ++b)
-      for (int j = 0, t = 0; j <= D; ++j)
-        if (j != boundary_[b].position)
-          facets[b][static_cast<std::size_t>(t++)] = cells_[boundary_[b].row][static_cast<std::size_t>(j)];
-    const auto cell_position = [&](std::size_t b, int j) { return j < boundary_[b].position ? j : j + 1; };
+    for (std::size_t b = 0; b < boundary_.size(); ++b) facets[b] = boundary_[b].facet;
     group_faces<D>(points_.size(), std::span<const std::array<std::uint32_t, D>>(facets),
                    [&](std::span<const Face_ref> g) {
                      if (stop()) return;
                      const Face_ref f1 = g[0];
-                     const Cell& c1 = cells_[boundary_[f1.row].row];
                      if (g.size() != 2) {
-                       std::vector<std::uint32_t> ridge = facet_of(c1, boundary_[f1.row].position);
-                       ridge.erase(std::find(ridge.begin(), ridge.end(), facets[f1.row][static_cast<std::size_t>(f1.position)]));
-                       fail({.rule = Rule::boundary_ridge_not_manifold, .simplex = cell_row_[boundary_[f1.row].row],
-                             .face = ridge});
+                       fail({.rule = Rule::boundary_ridge_not_manifold, .simplex = boundary_[f1.row].row,
+                             .face = without(facets[f1.row], facets[f1.row][static_cast<std::size_t>(f1.position)])});
                        return;
                      }
                      for (int t = 0; t < 2; ++t) {
                        const Face_ref f = g[static_cast<std::size_t>(t)], o = g[static_cast<std::size_t>(1 - t)];
-                       const Cell& cf = cells_[boundary_[f.row].row];
+                       const Boundary_facet& bf = boundary_[f.row];
                        const std::uint32_t far = facets[o.row][static_cast<std::size_t>(o.position)];
-                       // cf is positive: its inner side is the side of its vertex opposite the facet.
-                       if (replaced(cf, boundary_[f.row].position, far) == kernel::NEGATIVE) {
-                         std::vector<std::uint32_t> ridge = facet_of(cf, boundary_[f.row].position);
-                         ridge.erase(std::find(ridge.begin(), ridge.end(),
-                                               cf[static_cast<std::size_t>(cell_position(f.row, f.position))]));
-                         fail({.rule = Rule::boundary_not_convex, .simplex = cell_row_[boundary_[f.row].row],
-                               .other_simplex = cell_row_[boundary_[o.row].row], .face = ridge, .point = far});
+                       // The simplex's inner side is its apex's: `far` must not be strictly across.
+                       if (orientation_(oriented(bf.facet, far, bf.positive)) == kernel::NEGATIVE) {
+                         fail({.rule = Rule::boundary_not_convex, .simplex = bf.row, .other_simplex = boundary_[o.row].row,
+                               .face = without(bf.facet, bf.facet[static_cast<std::size_t>(f.position)]), .point = far});
                          return;
                        }
                      }
                    });
-    const Witness_point<K> o(k_, at(cells_[0]));
+    const Witness_point<K> o(k_, at(first_cell_));
     for (const auto& b : boundary_) {
       if (stop()) return;
-      if (o.side_of_facet(at(cells_[b.row]), b.position) != kernel::POSITIVE)
-        fail({.rule = Rule::boundary_facet_inward, .simplex = cell_row_[b.row], .other_simplex = cell_row_[0],
-              .face = facet_of(cells_[b.row], b.position)});
+      if (o.side_of_facet(oriented(b.facet, b.apex, b.positive), D) != kernel::POSITIVE)
+        fail({.rule = Rule::boundary_facet_inward, .simplex = b.row, .other_simplex = first_row_,
+              .face = std::vector<std::uint32_t>(b.facet.begin(), b.facet.end())});
     }
   }
 
-  /// The global test: no simplex but cells_[0] contains the witness point.
+  /// The global test: no simplex but the first contains the witness point
+  /// (the rows that do were collected by check_simplices).
   void check_covering() {
-    const Witness_point<K> o(k_, at(cells_[0]));
-    for (std::size_t t = 1; t < cells_.size() && !stop(); ++t) {
-      if constexpr (kernel::approximate_coordinates_are_exact<K>) {
-        // o is infinitesimally close to its anchor, an input point: a cell whose
-        // bounding box (exact: the coordinates are the points) misses the anchor
-        // cannot contain o.
-        const auto coords = k_.approximate_coordinates_object();
-        const auto& x = coords(o.anchor());
-        bool outside = false;
-        for (int j = 0; j < D && !outside; ++j) {
-          bool below = true, above = true;
-          for (std::uint32_t v : cells_[t]) {
-            const double c = coords(points_[v])[static_cast<std::size_t>(j)];
-            below = below && x[static_cast<std::size_t>(j)] < c;
-            above = above && x[static_cast<std::size_t>(j)] > c;
-          }
-          outside = below || above;
-        }
-        if (outside) continue;
-      }
-      if (o.inside(at(cells_[t])))
-        fail({.rule = Rule::multiple_covering, .simplex = cell_row_[t], .other_simplex = cell_row_[0],
-              .point = cells_[0][0]});
+    for (std::size_t t : covering_) {
+      if (stop()) return;
+      fail({.rule = Rule::multiple_covering, .simplex = t, .other_simplex = first_row_, .point = first_cell_[0]});
     }
   }
 
@@ -458,11 +553,15 @@ class Certifier {
   decltype(std::declval<const K&>().orientation_d_object()) orientation_;
   Report report_;
   std::vector<Violation> fatal_, delaunay_, notes_;
-  std::vector<bool> bad_point_, used_;
+  std::vector<bool> bad_point_;
+  std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
   std::vector<std::uint32_t> first_;
-  std::vector<Cell> cells_;            // valid simplices, positively oriented
-  std::vector<std::size_t> cell_row_;  // their rows in the input
-  std::vector<Face_ref> boundary_;     // facets of one cell: (cell, opposite position)
+  std::vector<std::uint8_t> status_;        // Row_status of every row
+  std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex
+  std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it
+  Cell first_cell_{};                       // its vertices, positively oriented
+  std::vector<std::size_t> covering_;       // other rows that contain the witness
+  std::vector<Boundary_facet> boundary_;    // facets of one simplex, in facet order
 };
 
 }  // namespace dewall::certify::detail

@@ -1,0 +1,222 @@
+// The certifier's facet matching over compact records (facet_table.hpp) against
+// a brute-force matching, and the certifier built on it against the certifier
+// it replaced (tests/support/certify_reference.hpp): the same report — rule,
+// simplices, facet, point, counts — on dewall's triangulations of uniform,
+// lattice, cospherical and duplicated points in 2D–6D and on their mutants.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <map>
+#include <random>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "dewall/certify/certify.hpp"
+#include "dewall/certify/facet_table.hpp"
+#include "dewall/dewall.hpp"
+#include "support/certify_reference.hpp"
+#include "support/dewall_point_sets.hpp"
+
+namespace certify = dewall::certify;
+namespace kernel = dewall::kernel;
+using certify::detail::Facet_record;
+
+namespace {
+
+template <int D>
+using Rows = std::vector<std::array<std::uint32_t, D + 1>>;
+
+/// One facet's members as (row, apex, positive), in row order.
+using Members = std::vector<std::tuple<std::size_t, std::uint32_t, bool>>;
+
+/// The facets of the valid rows by brute force: every facet's sorted vertices
+/// with its members; `positive` from the parity of (facet…, apex) against the
+/// sorted row, counted by inversions.
+template <int D>
+std::map<std::vector<std::uint32_t>, Members> brute_force(const Rows<D>& rows, const std::vector<std::uint8_t>& status) {
+  std::map<std::vector<std::uint32_t>, Members> facets;
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    if (status[r] == certify::detail::row_invalid) continue;
+    for (int j = 0; j <= D; ++j) {
+      std::vector<std::uint32_t> f;
+      for (int i = 0; i <= D; ++i)
+        if (i != j) f.push_back(rows[r][static_cast<std::size_t>(i)]);
+      std::sort(f.begin(), f.end());
+      std::vector<std::uint32_t> tuple = f;
+      tuple.push_back(rows[r][static_cast<std::size_t>(j)]);
+      int inversions = 0;
+      for (std::size_t a = 0; a < tuple.size(); ++a)
+        for (std::size_t b = a + 1; b < tuple.size(); ++b) inversions += tuple[a] > tuple[b];
+      const bool positive = (status[r] == certify::detail::row_sorted_positive) == (inversions % 2 == 0);
+      facets[f].emplace_back(r, rows[r][static_cast<std::size_t>(j)], positive);
+    }
+  }
+  return facets;
+}
+
+template <int D>
+void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count) {
+  const auto expected = brute_force<D>(rows, status);
+  std::vector<std::pair<std::vector<std::uint32_t>, Members>> got;
+  certify::detail::match_facets<D>(vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(rows),
+                                   std::span<const std::uint8_t>(status),
+                                   [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
+                                     std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
+                                     f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
+                                     Members m;
+                                     for (const auto& rec : g) {
+                                       CHECK(rec.rest == g[0].rest);
+                                       m.emplace_back(rec.row(), rec.apex, rec.positive());
+                                     }
+                                     got.emplace_back(f, m);
+                                   });
+  // The same facets, in increasing order, with the same members in row order.
+  REQUIRE(got.size() == expected.size());
+  std::size_t i = 0;
+  for (const auto& [f, m] : expected) {
+    CHECK(got[i].first == f);
+    CHECK(got[i].second == m);
+    ++i;
+  }
+}
+
+/// Random rows of D + 1 distinct vertices from a small pool (so facets repeat,
+/// some in three rows or more), a fifth of them invalid.
+template <int D>
+void random_matching(std::mt19937_64& rng) {
+  for (std::size_t pool : {std::size_t{D + 2}, std::size_t{12}, std::size_t{200}}) {
+    Rows<D> rows(500);
+    std::vector<std::uint8_t> status(rows.size());
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      std::vector<std::uint32_t> v(pool);
+      for (std::size_t i = 0; i < pool; ++i) v[i] = static_cast<std::uint32_t>(i);
+      std::shuffle(v.begin(), v.end(), rng);
+      std::copy(v.begin(), v.begin() + D + 1, rows[r].begin());
+      status[r] = static_cast<std::uint8_t>(rng() % 5 == 0 ? 0 : 1 + rng() % 2);
+    }
+    INFO("D = " << D << ", pool " << pool);
+    check_matching<D>(rows, status, pool);
+  }
+}
+
+template <int D>
+std::string dump(const certify::Report& r) {
+  std::string s = "delaunay " + std::to_string(r.delaunay) + " canonical " + std::to_string(r.canonical) + " points " +
+                  std::to_string(r.points) + " distinct " + std::to_string(r.distinct_points) + " simplices " +
+                  std::to_string(r.simplices) + " interior " + std::to_string(r.interior_facets) + " boundary " +
+                  std::to_string(r.boundary_facets) + " cospherical " + std::to_string(r.cospherical_facets) + "\n";
+  for (const auto& v : r.violations) s += certify::describe(v) + "\n";
+  return s;
+}
+
+/// The new certifier and the reference agree, first violation and --all, on 1 and 2 threads.
+template <int D>
+void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, const std::string& what) {
+  INFO(what << " (D = " << D << ", " << p.size() << " points, " << t.size() << " rows)");
+  using K = kernel::Filtered_kernel_d<D>;
+  const std::span<const kernel::Point_d<D>> points(p);
+  const std::span<const std::array<std::uint32_t, D + 1>> rows(t);
+  for (bool all : {false, true}) {
+    const std::string expected = dump<D>(dewall::test::certify_reference<K>(points, rows, {.all = all, .threads = 1}));
+    for (unsigned threads : {1u, 2u}) {
+      INFO("all " << all << ", threads " << threads);
+      CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads})) == expected);
+    }
+  }
+}
+
+/// A triangulation and its mutants, each compared with the reference.
+template <int D>
+void same_reports_with_mutants(const std::vector<kernel::Point_d<D>>& p, const std::string& what, std::mt19937_64& rng) {
+  const Rows<D> t = dewall::triangulate<D>(p, dewall::Options{.engine = dewall::Engine::dewall}).simplices;
+  same_report<D>(p, t, what);
+  const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
+  const auto mutant = [&](const std::string& name, auto change) {
+    Rows<D> m = t;
+    change(m);
+    same_report<D>(p, m, what + ", " + name);
+  };
+  mutant("a row dropped", [&](Rows<D>& m) { m.erase(m.begin() + static_cast<std::ptrdiff_t>(pick(m.size()))); });
+  mutant("the first row dropped", [&](Rows<D>& m) { m.erase(m.begin()); });
+  mutant("a row repeated, reordered", [&](Rows<D>& m) {
+    auto row = m[pick(m.size())];
+    std::reverse(row.begin(), row.end());
+    m.push_back(row);
+  });
+  mutant("a vertex replaced", [&](Rows<D>& m) { m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(pick(p.size())); });
+  mutant("three vertices replaced", [&](Rows<D>& m) {
+    for (int k = 0; k < 3; ++k) m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(pick(p.size()));
+  });
+  mutant("an index out of range", [&](Rows<D>& m) { m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(p.size() + 2); });
+  mutant("a repeated vertex", [&](Rows<D>& m) {
+    auto& row = m[pick(m.size())];
+    row[1] = row[0];
+  });
+  mutant("a row of the first simplex's neighbourhood added", [&](Rows<D>& m) {
+    auto row = m[0];
+    row[0] = m[1][0] == row[1] ? m[1][1] : m[1][0];
+    m.push_back(row);
+  });
+  mutant("every row of a point removed", [&](Rows<D>& m) {
+    const std::uint32_t v = m[pick(m.size())][0];
+    std::erase_if(m, [&](const auto& row) { return std::find(row.begin(), row.end(), v) != row.end(); });
+  });
+  mutant("rows shuffled and reoriented", [&](Rows<D>& m) {
+    std::shuffle(m.begin(), m.end(), rng);
+    for (auto& row : m) std::shuffle(row.begin(), row.end(), rng);
+  });
+  mutant("rows reversed and two swapped vertices in the first", [&](Rows<D>& m) {
+    std::reverse(m.begin(), m.end());
+    std::swap(m[0][0], m[0][D]);
+  });
+}
+
+template <int D>
+void same_reports(std::size_t n, std::mt19937_64& rng) {
+  same_reports_with_mutants<D>(dewall::test::uniform<D>(n, rng), "uniform", rng);
+  same_reports_with_mutants<D>(dewall::test::lattice<D>(n), "lattice", rng);
+  same_reports_with_mutants<D>(dewall::test::cospherical<D>(true), "cospherical with centre", rng);
+  auto dup = dewall::test::uniform<D>(n / 2, rng);
+  for (std::size_t i = 0; i < n / 4; ++i) dup.push_back(dup[static_cast<std::size_t>(rng() % dup.size())]);
+  same_reports_with_mutants<D>(dup, "with duplicates", rng);
+}
+
+}  // namespace
+
+TEST_CASE("certify facet table: the matching equals a brute-force one, 2D-6D", "[certify][facet_table]") {
+  std::mt19937_64 rng(61);
+  random_matching<2>(rng);
+  random_matching<3>(rng);
+  random_matching<4>(rng);
+  random_matching<5>(rng);
+  random_matching<6>(rng);
+}
+
+TEST_CASE("certify facet table: sorting a row keeps its parity", "[certify][facet_table]") {
+  std::array<std::uint32_t, 5> row{4, 1, 3, 0, 2};
+  std::array<std::uint32_t, 5> sorted{0, 1, 2, 3, 4};
+  std::mt19937_64 rng(5);
+  for (int k = 0; k < 100; ++k) {
+    std::shuffle(row.begin(), row.end(), rng);
+    int inversions = 0;
+    for (std::size_t a = 0; a < 5; ++a)
+      for (std::size_t b = a + 1; b < 5; ++b) inversions += row[a] > row[b];
+    const auto s = certify::detail::sort_row(row);
+    CHECK(s.v == sorted);
+    CHECK(s.odd == (inversions % 2 == 1));
+  }
+}
+
+TEST_CASE("certify facet table: the same reports as the former certifier, 2D-6D, mutants", "[certify][facet_table]") {
+  std::mt19937_64 rng(6161);
+  same_reports<2>(2000, rng);
+  same_reports<3>(1000, rng);
+  same_reports<4>(300, rng);
+  same_reports<5>(120, rng);
+  same_reports<6>(60, rng);
+  // Several ranges of rows (16384 each) and of vertices (4096 each), merged in order.
+  same_reports_with_mutants<3>(dewall::test::uniform<3>(10000, rng), "uniform, several ranges", rng);
+}
