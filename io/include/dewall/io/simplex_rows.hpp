@@ -43,6 +43,7 @@ void append_simplex_rows(std::string& out, std::span<const Index> indices, std::
     const std::size_t at = out.size();
     out.resize(at + indices.size() * static_cast<std::size_t>(index_bytes));
     char* to = out.data() + at;
+    if (indices.empty()) return;  // (memcpy may not be given an empty span's null pointer)
     if (std::endian::native == std::endian::little && sizeof(Index) == static_cast<std::size_t>(index_bytes)) {
       std::memcpy(to, indices.data(), indices.size() * sizeof(Index));  // the stored form already
     } else {
