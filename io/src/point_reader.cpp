@@ -214,7 +214,7 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
   if (magic == std::string_view(binary_simplices_magic, 4))
     throw Not_points_error(name + ": holds simplices (dewall's binary .dwsx format), not points");
   const auto head = file.prefix(4096);
-  const bool vtk = is_vtk_header(std::string(head.substr(0, head.find_first_of("\r\n"))));
+  const bool vtk = is_vtk_header(head);
   const Named_format named = format_named_by(path);
   if (!vtk && named == Named_format::tetgen_ele)
     throw Not_points_error(name + ": the name says TetGen simplices (.ele), not points");

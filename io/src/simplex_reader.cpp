@@ -160,7 +160,7 @@ Simplex_list read_simplices_file(const std::string& path, int dimension, std::si
   if (magic == std::string_view(binary_points_magic, 4))
     throw Not_simplices_error(name + ": holds points (dewall's binary .dwpt format), not simplices");
   const auto head = file.prefix(4096);
-  if (is_vtk_header(std::string(head.substr(0, head.find_first_of("\r\n"))))) {
+  if (is_vtk_header(head)) {
     Simplex_list list;
     list.format = "vtk";
     list.table = read_vtk_simplices(file.stream(), name, dimension);

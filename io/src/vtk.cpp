@@ -211,7 +211,8 @@ std::string expect_end_of_binary_points(std::istream& in, const std::string& nam
 
 }  // namespace
 
-bool is_vtk_header(const std::string& first_line) {
+bool is_vtk_header(std::string_view head) {
+  const std::string first_line(head.substr(0, head.find_first_of("\r\n")));
   return lower(first_line).rfind("# vtk datafile", 0) == 0;
 }
 

@@ -24,6 +24,7 @@
 #include <iosfwd>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "dewall/io/point_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
@@ -63,7 +64,8 @@ Point_table read_vtk_points(std::istream& in, const std::string& name);
 /// section is truncated or malformed.
 Simplex_table read_vtk_simplices(std::istream& in, const std::string& name, int dimension);
 
-/// True when `first_line` is the first line of a legacy VTK file ("# vtk DataFile …").
-bool is_vtk_header(const std::string& first_line);
+/// True when `head` (a first line, or the first bytes of an input) starts as a
+/// legacy VTK file ("# vtk DataFile …").
+bool is_vtk_header(std::string_view head);
 
 }  // namespace dewall::io
