@@ -445,6 +445,18 @@ void transform_row(const double* x, const std::uint32_t* index, std::size_t widt
   for (std::size_t k = 0; k < width; ++k) o[width * width + k] = bad ? NAN : r[k];
 }
 
+/// `simplices_in` as uint32 rows of d + 1 indices of `points`.
+/// \throws ValueError for an index that is no point's.
+py::array checked_simplices(py::handle simplices_in, const py::array& points, long d) {
+  py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
+  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const auto* index = static_cast<const std::uint32_t*>(simplices.data());
+  const auto size = static_cast<std::size_t>(simplices.shape(0)) * static_cast<std::size_t>(d + 1);
+  for (std::size_t i = 0; i < size; ++i)
+    if (index[i] >= n) throw py::value_error("simplices: index " + std::to_string(index[i]) + " is not a point index");
+  return simplices;
+}
+
 /// scipy's transform array (Delaunay.transform) in 2D and 3D, in one pass
 /// instead of a dozen NumPy temporaries (10^5 points in 3D: most of build +
 /// neighbors + transform).
@@ -452,12 +464,9 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   const py::array points = checked(points_in, float64, -1, "points");
   const long d = static_cast<long>(points.shape(1));
   if (d != 2 && d != 3) throw py::value_error("barycentric_transforms: points of 2 or 3 dimensions");
-  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
-  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const py::array simplices = checked_simplices(simplices_in, points, d);
   const auto count = static_cast<std::size_t>(simplices.shape(0));
   const auto* index = static_cast<const std::uint32_t*>(simplices.data());
-  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
-    if (index[i] >= n) throw py::value_error("simplices: index " + std::to_string(index[i]) + " is not a point index");
   const auto* x = static_cast<const double*>(points.data());
   py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(d + 1), static_cast<py::ssize_t>(d)});
   double* o = out.mutable_data();
@@ -490,12 +499,9 @@ py::array merge_groups(std::size_t count, py::handle pairs_in) {
 py::array circumcentres(py::handle points_in, py::handle simplices_in) {
   const py::array points = checked(points_in, float64, -1, "points");
   const long d = static_cast<long>(points.shape(1));
-  const py::array simplices = checked(simplices_in, uint32, d + 1, "simplices");
-  const auto n = static_cast<std::uint32_t>(points.shape(0));
+  const py::array simplices = checked_simplices(simplices_in, points, d);
   const auto count = static_cast<std::size_t>(simplices.shape(0));
   const auto* index = static_cast<const std::uint32_t*>(simplices.data());
-  for (std::size_t i = 0; i < count * static_cast<std::size_t>(d + 1); ++i)
-    if (index[i] >= n) throw py::value_error("simplices: index " + std::to_string(index[i]) + " is not a point index");
   py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(d)});
   double* o = out.mutable_data();
   dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
