@@ -59,7 +59,8 @@ int command_generate(int argc, char** argv) {
   if (shape.planes != 0 && (shape.planes < 2 || shape.planes > 1000))
     throw Usage_error("--planes must be 2 to 1000, not " + std::to_string(shape.planes) + (shape.planes > 1000 ? " or more" : ""));
   check_dim_option(dim);
-  if (*kind == io::Point_kind::scan && dim != 3) throw Usage_error("kind scan is 3D only, not --dim " + std::to_string(dim));
+  if (io::is_3d_only(*kind) && dim != 3)
+    throw Usage_error(std::string("kind ") + io::point_kind_name(*kind) + " is 3D only, not --dim " + std::to_string(dim));
   check_fits_in_memory(n, dim);
   if (io::is_vtk_path(output) && dim > 3)
     throw Usage_error("VTK output supports 2D and 3D only (--dim " + std::to_string(dim) + "); use .dwpt or text");
@@ -100,8 +101,12 @@ const bool registered = register_command({"generate", command_generate,
     "      cube), ball, sphere (on the unit sphere), bubbles (Gaussian clusters),\n"
     "      grid (integer lattice, about N points), lattice-sphere (integer points on\n"
     "      one sphere, about N, exactly cospherical), planes (on 2 to 8 parallel\n"
-    "      hyperplanes), torus (on a torus surface) or scan (a simulated range\n"
-    "      scan of objects on a table, 3D only). N may be written 1e6.\n"
+    "      hyperplanes), torus (on a torus surface), scan (a simulated range\n"
+    "      scan of objects on a table), depth (a depth-camera frame: a few hundred\n"
+    "      planes z = c, each a near-regular grid), lidar (an airborne laser scan\n"
+    "      in UTM coordinates on a 0.5 m grid, 4% repeated points) or indoor (the\n"
+    "      scan's points each repeated 2 to 4 times); the last four are 3D only.\n"
+    "      N may be written 1e6.\n"
     "      --noise X (0 to 1, sphere and torus only) moves each point along the\n"
     "      surface normal by X times the radius (sphere: 1, torus: the tube\n"
     "      radius 0.3) times a standard normal deviate.\n"

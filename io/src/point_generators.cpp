@@ -19,8 +19,9 @@ using Rng = std::mt19937_64;
 // doubles; GCC and Clang's 128-bit integers hold them exactly.
 __extension__ typedef __int128 Int128;
 
-constexpr std::array<const char*, 9> kind_names = {"uniform", "ball",           "sphere", "bubbles", "grid",
-                                                   "lattice-sphere", "planes", "torus", "scan"};
+constexpr std::array<const char*, 12> kind_names = {"uniform", "ball",           "sphere", "bubbles", "grid",
+                                                    "lattice-sphere", "planes", "torus", "scan", "depth",
+                                                    "lidar",   "indoor"};
 
 /// A uniform double in [0, 1): the top 53 bits of one draw, scaled exactly.
 double uniform01(Rng& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
@@ -222,6 +223,189 @@ void scan(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
   std::sort(pick.begin(), pick.begin() + static_cast<std::ptrdiff_t>(n));
   t.coordinates.reserve(3 * n);
   for (std::size_t i = 0; i < n; ++i) t.coordinates.insert(t.coordinates.end(), hits[pick[i]].begin(), hits[pick[i]].end());
+}
+
+/// Indices of `count` of the first `total` integers, chosen at random, in
+/// increasing order (a partial Fisher–Yates shuffle). \pre count ≤ total.
+std::vector<std::size_t> random_subset(std::size_t total, std::size_t count, Rng& rng) {
+  std::vector<std::size_t> pick(total);
+  for (std::size_t i = 0; i < total; ++i) pick[i] = i;
+  for (std::size_t i = 0; i < count; ++i)
+    std::swap(pick[i], pick[i + std::min(total - i - 1, static_cast<std::size_t>(uniform01(rng) * static_cast<double>(total - i)))]);
+  pick.resize(count);
+  std::sort(pick.begin(), pick.end());
+  return pick;
+}
+
+/// One depth-camera frame (3D only), as a structured-light or time-of-flight
+/// camera gives it: a W × H pixel grid (aspect 4:3, focal length 0.83 W,
+/// principal point at the centre) looking along +z into a room (floor,
+/// ceiling, side walls, a tilted back wall 3.4–4 m away) holding two balls and
+/// a box placed at random. A pixel's depth is the first hit along its ray
+/// plus noise growing with the square of the depth, quantised as a camera's
+/// disparity is (d = round(800 / z), z = 800 / d, then whole millimetres):
+/// a few hundred depth levels. The point is ((u − c_x) z / f, (v − c_y) z / f, z):
+/// each level a plane z = c whose points share their rows' y and their
+/// columns' x exactly — a near-regular grid, coplanar, collinear and
+/// cocircular everywhere. Of the W·H ≥ n / 0.95 pixels, n are kept at random
+/// (the holes of a real frame), in the frame's row order.
+void depth(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+  using V = std::array<double, 3>;
+  const double pixels = static_cast<double>(n) / 0.95;
+  const auto w = static_cast<std::size_t>(std::ceil(std::sqrt(pixels * 4 / 3)));
+  const auto h = static_cast<std::size_t>(std::ceil(pixels / static_cast<double>(w)));
+  const double f = 0.83 * static_cast<double>(w), cx = (static_cast<double>(w) - 1) / 2, cy = (static_cast<double>(h) - 1) / 2;
+  struct Ball { V c; double r; };
+  // Camera at the origin, y pointing down: floor y = 1.1, ceiling y = −1.4.
+  Ball balls[2];
+  for (auto& b : balls) {
+    b.r = 0.2 + 0.3 * uniform01(rng);
+    b.c = {-1.2 + 2.4 * uniform01(rng), 1.1 - b.r, 1.2 + 1.8 * uniform01(rng)};
+  }
+  const double box_x = -1.0 + 1.5 * uniform01(rng), box_z = 1.5 + 1.5 * uniform01(rng);
+  const V box_lo{box_x, 0.4, box_z}, box_hi{box_x + 0.5, 1.1, box_z + 0.4};
+  const double tilt = 0.15 * (2 * uniform01(rng) - 1);  // back wall z = 3.7 + tilt·x
+  // The depth z of the first hit of the ray (a, b, 1), or infinity.
+  auto first_hit = [&](double a, double b) {
+    double best = HUGE_VAL;
+    auto plane = [&](double denominator, double numerator) {  // n·(t·dir) = c: t = c / (n·dir)
+      if (denominator != 0) {
+        const double z = numerator / denominator;
+        if (z > 0.3) best = std::min(best, z);
+      }
+    };
+    plane(b, 1.1), plane(b, -1.4), plane(a, 2.0), plane(a, -2.0), plane(1 - tilt * a, 3.7);
+    const V dir{a, b, 1};
+    for (const Ball& ball : balls) {
+      const double dd = a * a + b * b + 1, dc = a * ball.c[0] + b * ball.c[1] + ball.c[2];
+      const double cc = ball.c[0] * ball.c[0] + ball.c[1] * ball.c[1] + ball.c[2] * ball.c[2];
+      const double disc = dc * dc - dd * (cc - ball.r * ball.r);
+      if (disc >= 0) {
+        const double z = (dc - std::sqrt(disc)) / dd;
+        if (z > 0.3) best = std::min(best, z);
+      }
+    }
+    double enter = 0.3, leave = HUGE_VAL;  // the box: slabs
+    for (int j = 0; j < 3; ++j) {
+      if (dir[j] == 0) {  // parallel to the slab: inside it or never in the box
+        if (box_lo[j] > 0 || box_hi[j] < 0) enter = HUGE_VAL;
+        continue;
+      }
+      const double p = box_lo[j] / dir[j], q = box_hi[j] / dir[j];
+      enter = std::max(enter, std::min(p, q));
+      leave = std::min(leave, std::max(p, q));
+    }
+    if (enter <= leave) best = std::min(best, enter);
+    return best;
+  };
+  const auto keep = random_subset(w * h, n, rng);
+  t.coordinates.reserve(3 * n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double u = static_cast<double>(keep[i] % w), v = static_cast<double>(keep[i] / w);
+    double z = first_hit((u - cx) / f, (v - cy) / f);
+    if (z == HUGE_VAL) z = 4.0;  // (not reached: the room is closed)
+    z += (0.0012 + 0.0019 * (z - 0.4) * (z - 0.4)) * normal(rng);
+    const double disparity = std::clamp(std::nearbyint(800 / z), 150.0, 2000.0);
+    z = std::nearbyint(1000 * (800 / disparity)) / 1000;
+    t.coordinates.push_back((u - cx) * z / f);
+    t.coordinates.push_back((v - cy) * z / f);
+    t.coordinates.push_back(z);
+    tick(progress, i);
+  }
+}
+
+/// An airborne laser scan tile in UTM coordinates (3D only): x ≈ 5·10^5,
+/// y ≈ 5·10^6 (metres; the tile's corner a random multiple of 1 km), the
+/// returns on a 0.5 m grid (85 % of the cells of a square tile, at random),
+/// z a gently rolling terrain about 250 m high (three random waves, a few
+/// metres) with flat-roofed buildings (one per 2,500 m², roofs 5–15 m up),
+/// plus noise (σ = 2 cm), stored as a LAS file stores it: whole centimetres.
+/// Then 4 % of the points (round(0.04 n)) are exact repeats of earlier ones
+/// (overlapping flight strips), after the others. Points in flight order:
+/// lines of the grid, alternately forwards and backwards.
+void lidar(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+  constexpr double pi = 3.14159265358979323846, spacing = 0.5;
+  const auto repeats = static_cast<std::size_t>(std::llround(0.04 * static_cast<double>(n)));
+  const std::size_t distinct = n - repeats;
+  const auto side = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(distinct) / 0.85)));
+  const double x0 = 500000 + 1000 * std::floor(100 * uniform01(rng) - 50);
+  const double y0 = 5000000 + 1000 * std::floor(100 * uniform01(rng) - 50);
+  struct Wave { double kx, ky, phase, amplitude; };
+  Wave waves[3];
+  for (auto& wave : waves) {
+    const double length = 60 + 240 * uniform01(rng), angle = 2 * pi * uniform01(rng);
+    wave = {2 * pi / length * std::cos(angle), 2 * pi / length * std::sin(angle), 2 * pi * uniform01(rng),
+            0.5 + 2.5 * uniform01(rng)};
+  }
+  auto ground = [&](double x, double y) {  // x, y from the tile's corner
+    double z = 250;
+    for (const Wave& wave : waves) z += wave.amplitude * std::sin(wave.kx * x + wave.ky * y + wave.phase);
+    return z;
+  };
+  struct Building { double x, y, dx, dy, roof; };
+  const double extent = spacing * static_cast<double>(side);
+  std::vector<Building> buildings(static_cast<std::size_t>(extent * extent / 2500));
+  for (auto& b : buildings) {
+    b.dx = 8 + 22 * uniform01(rng), b.dy = 8 + 22 * uniform01(rng);
+    b.x = (extent - b.dx) * uniform01(rng), b.y = (extent - b.dy) * uniform01(rng);
+    b.roof = ground(b.x + b.dx / 2, b.y + b.dy / 2) + 5 + 10 * uniform01(rng);
+  }
+  const auto cells = random_subset(side * side, distinct, rng);
+  t.coordinates.reserve(3 * n);
+  for (std::size_t i = 0; i < distinct; ++i) {
+    const std::size_t row = cells[i] / side, along = cells[i] % side;
+    const double x = spacing * static_cast<double>(along), y = spacing * static_cast<double>(row);
+    double z = ground(x, y);
+    for (const Building& b : buildings)
+      if (x >= b.x && x <= b.x + b.dx && y >= b.y && y <= b.y + b.dy) z = std::max(z, b.roof);
+    z = std::nearbyint(100 * (z + 0.02 * normal(rng))) / 100;
+    t.coordinates.push_back(x0 + x);
+    t.coordinates.push_back(y0 + y);
+    t.coordinates.push_back(z);
+    tick(progress, i);
+  }
+  // Backwards rows: reverse each odd row's run of points (cells are sorted by row, then column).
+  for (std::size_t begin = 0; begin < distinct;) {
+    std::size_t end = begin;
+    while (end < distinct && cells[end] / side == cells[begin] / side) ++end;
+    if ((cells[begin] / side) % 2 == 1)
+      for (std::size_t a = begin, b = end - 1; a < b; ++a, --b)
+        for (std::size_t j = 0; j < 3; ++j) std::swap(t.coordinates[3 * a + j], t.coordinates[3 * b + j]);
+    begin = end;
+  }
+  for (std::size_t i = 0; i < repeats; ++i) {
+    const auto k = std::min(distinct - 1, static_cast<std::size_t>(uniform01(rng) * static_cast<double>(distinct)));
+    for (std::size_t j = 0; j < 3; ++j) t.coordinates.push_back(t.coordinates[3 * k + j]);
+    tick(progress, distinct + i);
+  }
+}
+
+/// An indoor scan seen several times (3D only): the points of kind `scan`
+/// (about n / 3 of them), each repeated 2, 3 or 4 times exactly, as when
+/// registered sweeps snap to the same scanner grid. The output is the sweeps
+/// one after the other: every point, then the points seen a second time,
+/// a third, a fourth; n points in all.
+void indoor(Point_table& t, std::size_t n, Rng& rng, Progress* progress) {
+  const std::size_t distinct = std::max<std::size_t>(4, (n + 2) / 3);
+  scan(t, distinct, rng, nullptr);
+  std::vector<int> times(distinct);
+  std::size_t total = 0;
+  for (auto& k : times) total += static_cast<std::size_t>(k = 2 + static_cast<int>(uniform01(rng) * 3));
+  // Bring the total to n, one point at a time (n ≥ 2·distinct and 4·distinct ≥ n hold for n ≥ 8).
+  while (total != n) {
+    auto& k = times[std::min(distinct - 1, static_cast<std::size_t>(uniform01(rng) * static_cast<double>(distinct)))];
+    if (total > n && k > 2) --k, --total;
+    else if (total < n && k < 4) ++k, ++total;
+  }
+  const std::vector<double> base = t.coordinates;
+  t.coordinates.reserve(3 * n);
+  for (int sweep = 2; sweep <= 4; ++sweep)
+    for (std::size_t i = 0; i < distinct; ++i)
+      if (times[i] >= sweep) {
+        t.coordinates.insert(t.coordinates.end(), base.begin() + static_cast<std::ptrdiff_t>(3 * i),
+                             base.begin() + static_cast<std::ptrdiff_t>(3 * i + 3));
+        tick(progress, t.coordinates.size() / 3);
+      }
 }
 
 /// The paper's "bubbles": a few clusters of random centre, size and weight, each
@@ -456,6 +640,10 @@ std::optional<Point_kind> parse_point_kind(std::string_view name) {
 
 const char* point_kind_name(Point_kind kind) { return kind_names[static_cast<std::size_t>(kind)]; }
 
+bool is_3d_only(Point_kind kind) {
+  return kind == Point_kind::scan || kind == Point_kind::depth || kind == Point_kind::lidar || kind == Point_kind::indoor;
+}
+
 std::string point_kind_names() {
   std::string s;
   for (const char* name : kind_names) s += (s.empty() ? "" : ", ") + std::string(name);
@@ -479,8 +667,12 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     throw std::invalid_argument(std::string("a plane count applies to kind planes only, not ") + point_kind_name(kind));
   if (!is_supported_dimension(dimension))
     throw std::invalid_argument("dimension " + std::to_string(dimension) + " is not supported (" + dimension_range() + ")");
-  if (kind == Point_kind::scan && dimension != 3)
-    throw std::invalid_argument("kind scan is 3D only, not dimension " + std::to_string(dimension));
+  if (is_3d_only(kind) && dimension != 3)
+    throw std::invalid_argument(std::string("kind ") + point_kind_name(kind) + " is 3D only, not dimension " +
+                                std::to_string(dimension));
+  if (kind == Point_kind::indoor && n < 8)
+    throw std::invalid_argument("kind indoor needs at least 8 points (each of them repeated), asked for " +
+                                std::to_string(n));
   if (n < static_cast<std::size_t>(dimension) + 1)
     throw std::invalid_argument("need at least " + std::to_string(dimension + 1) + " points in dimension " +
                                 std::to_string(dimension) + ", asked for " + std::to_string(n));
@@ -498,6 +690,9 @@ Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::
     case Point_kind::planes: planes(t, n, options.planes, rng, progress); break;
     case Point_kind::torus: torus(t, n, noise, rng, progress); break;
     case Point_kind::scan: scan(t, n, rng, progress); break;
+    case Point_kind::depth: depth(t, n, rng, progress); break;
+    case Point_kind::lidar: lidar(t, n, rng, progress); break;
+    case Point_kind::indoor: indoor(t, n, rng, progress); break;
   }
   if (progress) progress->finish();
   return t;

@@ -13,7 +13,9 @@ def generate(kind, n, dim=3, seed=None):
     kind: one of KINDS (see `dewall generate --help`): uniform (unit cube),
     ball, sphere, bubbles (the DeWall paper's clusters), grid (integer lattice,
     about n points), lattice-sphere (integer points on one sphere, about n,
-    exactly cospherical), planes, torus, scan (a simulated range scan, 3D only).
+    exactly cospherical), planes, torus, scan (a simulated range scan), depth
+    (a depth-camera frame), lidar (an airborne laser scan in UTM coordinates),
+    indoor (a scan with every point 2-4 times); the last four 3D only.
     The same seed gives the same points as
     `dewall generate KIND N --dim DIM --seed SEED`. seed=None draws one at
     random; pass a seed to reproduce a set.

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <map>
@@ -20,14 +21,16 @@ using dewall::io::Point_table;
 
 namespace {
 
-constexpr Point_kind all_kinds[] = {Point_kind::uniform, Point_kind::ball,           Point_kind::sphere,
-                                    Point_kind::bubbles, Point_kind::grid,           Point_kind::lattice_sphere,
-                                    Point_kind::planes,  Point_kind::torus,          Point_kind::scan};
-constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball,   Point_kind::sphere, Point_kind::bubbles,
-                                       Point_kind::planes,  Point_kind::torus,  Point_kind::scan};
+constexpr Point_kind all_kinds[] = {Point_kind::uniform, Point_kind::ball,  Point_kind::sphere, Point_kind::bubbles,
+                                    Point_kind::grid,    Point_kind::lattice_sphere, Point_kind::planes,
+                                    Point_kind::torus,   Point_kind::scan,  Point_kind::depth,  Point_kind::lidar,
+                                    Point_kind::indoor};
+constexpr Point_kind random_kinds[] = {Point_kind::uniform, Point_kind::ball,  Point_kind::sphere, Point_kind::bubbles,
+                                       Point_kind::planes,  Point_kind::torus, Point_kind::scan,   Point_kind::depth,
+                                       Point_kind::lidar,   Point_kind::indoor};
 
-/// Whether `kind` is made in dimension d (a scan is 3D only).
-bool made_in(Point_kind kind, int d) { return kind != Point_kind::scan || d == 3; }
+/// Whether `kind` is made in dimension d (the sensor kinds are 3D only).
+bool made_in(Point_kind kind, int d) { return !dewall::io::is_3d_only(kind) || d == 3; }
 
 double coordinate(const Point_table& t, std::size_t i, int j) {
   return t.coordinates[i * static_cast<std::size_t>(t.dimension) + static_cast<std::size_t>(j)];
@@ -305,5 +308,107 @@ TEST_CASE("generators: a scan's points lie on the scene, on the scanner's grid, 
     CHECK(largest_plane >= 10);
     // Above the table: the objects were seen (points up to the balls' and the cylinder's tops).
     CHECK(heights.rbegin()->first > 0.7);
+  }
+}
+
+namespace {
+
+using Xyz = std::array<double, 3>;
+
+Xyz point3(const Point_table& t, std::size_t i) { return {coordinate(t, i, 0), coordinate(t, i, 1), coordinate(t, i, 2)}; }
+
+/// How many times each distinct point occurs.
+std::map<Xyz, std::size_t> multiplicities(const Point_table& t) {
+  std::map<Xyz, std::size_t> m;
+  for (std::size_t i = 0; i < t.size(); ++i) ++m[point3(t, i)];
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("generators: the sensor kinds are 3D only", "[generate]") {
+  for (auto kind : {Point_kind::depth, Point_kind::lidar, Point_kind::indoor}) {
+    INFO("kind " << dewall::io::point_kind_name(kind));
+    CHECK(dewall::io::is_3d_only(kind));
+    CHECK_THROWS_WITH(generate_points(kind, 100, 2, 0), Catch::Contains("3D only"));
+    CHECK_THROWS_WITH(generate_points(kind, 100, 4, 0), Catch::Contains("3D only"));
+  }
+  CHECK_THROWS_WITH(generate_points(Point_kind::indoor, 7, 3, 0), Catch::Contains("at least 8"));
+  CHECK(generate_points(Point_kind::indoor, 8, 3, 0).size() == 8);
+}
+
+TEST_CASE("generators: a depth frame is a few hundred exactly parallel planes of near-regular grids", "[generate]") {
+  const std::size_t n = 4000;
+  const auto t = generate_points(Point_kind::depth, n, 3, 31);
+  REQUIRE(t.size() == n);
+  std::map<double, std::vector<std::size_t>> planes;  // z → points
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = coordinate(t, i, 2);
+    CHECK((z >= 0.4 && z <= 5));
+    CHECK(std::nearbyint(z * 1000) / 1000 == z);  // whole millimetres
+    planes[z].push_back(i);
+  }
+  // Disparity levels 800 / d: far fewer planes than points, at most a few hundred.
+  CHECK(planes.size() >= 20);
+  CHECK(planes.size() <= 400);
+  CHECK(multiplicities(t).size() == n);  // one point per pixel
+  // On the most populated plane: the points share rows (y) and columns (x)
+  // exactly, many of them three or more to a row (collinear), and some four
+  // form an axis-parallel rectangle (cocircular: every sphere through them ties).
+  const auto& largest = std::max_element(planes.begin(), planes.end(), [](const auto& a, const auto& b) {
+                          return a.second.size() < b.second.size();
+                        })->second;
+  REQUIRE(largest.size() >= 50);
+  std::map<double, std::set<double>> rows;  // y → the x of its points
+  for (auto i : largest) rows[coordinate(t, i, 1)].insert(coordinate(t, i, 0));
+  std::size_t collinear_rows = 0;
+  for (const auto& [y, xs] : rows) collinear_rows += xs.size() >= 3;
+  CHECK(collinear_rows >= 3);
+  bool rectangle = false;
+  for (auto a = rows.begin(); a != rows.end() && !rectangle; ++a)
+    for (auto b = std::next(a); b != rows.end() && !rectangle; ++b) {
+      std::size_t shared = 0;
+      for (double x : a->second) shared += b->second.count(x);
+      rectangle = shared >= 2;
+    }
+  CHECK(rectangle);
+}
+
+TEST_CASE("generators: a lidar tile is a 0.5 m grid in UTM coordinates with 4 % exact repeats", "[generate]") {
+  const std::size_t n = 5000;
+  const auto t = generate_points(Point_kind::lidar, n, 3, 41);
+  REQUIRE(t.size() == n);
+  double x0 = 1e300, y0 = 1e300;
+  for (std::size_t i = 0; i < n; ++i) x0 = std::min(x0, coordinate(t, i, 0)), y0 = std::min(y0, coordinate(t, i, 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double x = coordinate(t, i, 0), y = coordinate(t, i, 1), z = coordinate(t, i, 2);
+    CHECK((x >= 4.4e5 && x <= 5.6e5));
+    CHECK((y >= 4.94e6 && y <= 5.06e6));
+    CHECK(is_integer(2 * x));  // the 0.5 m grid, exactly
+    CHECK(is_integer(2 * y));
+    CHECK(std::nearbyint(z * 100) / 100 == z);  // whole centimetres
+    CHECK((z >= 235 && z <= 280));
+  }
+  const auto m = multiplicities(t);
+  CHECK(m.size() == n - 200);  // round(0.04 n) repeats of other points
+  std::size_t repeated = 0;
+  for (const auto& [p, k] : m) repeated += k > 1;
+  CHECK(repeated > 150);
+}
+
+TEST_CASE("generators: indoor repeats every scan point 2 to 4 times", "[generate]") {
+  for (const std::size_t n : {std::size_t{8}, std::size_t{1001}, std::size_t{3000}}) {
+    INFO("n = " << n);
+    const auto t = generate_points(Point_kind::indoor, n, 3, 51);
+    REQUIRE(t.size() == n);
+    const auto m = multiplicities(t);
+    CHECK(m.size() >= 4);
+    std::set<std::size_t> seen;
+    for (const auto& [p, k] : m) {
+      CHECK((k >= 2 && k <= 4));
+      seen.insert(k);
+      for (double v : p) CHECK(is_integer(v * 0x1p16));  // the scan's 2^-16 grid
+    }
+    if (n >= 1000) CHECK(seen.size() == 3);
   }
 }

@@ -973,3 +973,73 @@ TEMPLATE_TEST_CASE_SIG("static filter on a lattice: exact up to its bound, as GM
     CHECK(sphere_zero > 100);
   }
 }
+
+TEST_CASE("static filter at UTM offsets: the same decisions as at the origin, as GMP decides them",
+          "[gmp][predicates]") {
+  // Airborne laser scans (dewall generate lidar): x ≈ 5·10^5, y ≈ 5·10^6 on a
+  // 0.5 m grid, z in centimetres. The filter's bound comes from the box's
+  // extents and the entries are coordinate differences, so moving the tile
+  // to the origin (exactly: multiples of 0.5 below 2^23) changes no entry,
+  // no determinant and no decision; a bound grown with the coordinates would
+  // leave every call to the cascade.
+  const auto seed = dewall::test::test_seed(0x07e5 + 3);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  const double x0 = 463000, y0 = 4963000, side = 500;
+  const std::array<double, 3> utm_lo{x0, y0, 240}, utm_hi{x0 + side, y0 + side, 260};
+  const std::array<double, 3> lo{0, 0, 240}, hi{side, side, 260};
+  const Static_filter_d<3> utm(utm_lo, utm_hi), origin(lo, hi);
+  REQUIRE(utm.valid());
+  int decided = 0, ties = 0, tie_zeros = 0;
+  constexpr int cases = 600;
+  for (int c = 0; c < cases; ++c) {
+    // Five returns in a few metres of the tile; every third case a roof: four
+    // of them at one height on a grid rectangle (coplanar and cocircular).
+    const bool roof = c % 3 == 0;
+    const long i0 = dewall::test::uniform_int(rng, 0, 980), j0 = dewall::test::uniform_int(rng, 0, 980);
+    const long height = dewall::test::uniform_int(rng, 24000, 26000);
+    std::vector<Point<3>> at_origin(5);
+    for (int k = 0; k < 5; ++k) {
+      const long di = roof && k < 4 ? (k & 1) * dewall::test::uniform_int(rng, 1, 4) : dewall::test::uniform_int(rng, 0, 16);
+      const long dj = roof && k < 4 ? (k >> 1) * 3 : dewall::test::uniform_int(rng, 0, 16);
+      const long z = roof && k < 4 ? height : dewall::test::uniform_int(rng, 24000, 26000);
+      at_origin[static_cast<std::size_t>(k)].x = {0.5 * static_cast<double>(i0 + di), 0.5 * static_cast<double>(j0 + dj),
+                                                  static_cast<double>(z) / 100};
+    }
+    if (roof) {  // a rectangle: x of points 1 and 3 equal, as of 0 and 2
+      at_origin[3].x[0] = at_origin[1].x[0];
+      at_origin[2].x[0] = at_origin[0].x[0];
+    }
+    std::vector<Point<3>> at_utm = at_origin;
+    for (auto& p : at_utm) p.x[0] += x0, p.x[1] += y0;
+    bool distinct = true;
+    for (int a = 0; a < 5; ++a)
+      for (int b = 0; b < a; ++b) distinct = distinct && at_origin[static_cast<std::size_t>(a)].x != at_origin[static_cast<std::size_t>(b)].x;
+    if (!distinct) continue;
+    const Call_points<3> u(at_utm), o(at_origin);
+    INFO(dewall::test::format_points<3>(at_utm));
+    const int expected_orientation = dewall::test::gmp_orientation<3>(u.simplex);
+    const int expected_sphere = dewall::test::gmp_side_of_oriented_sphere<3>(u.simplex, at_utm[4]);
+    // Translation invariance of the exact answers, then of the filter's.
+    CHECK(dewall::test::gmp_orientation<3>(o.simplex) == expected_orientation);
+    CHECK(dewall::test::gmp_side_of_oriented_sphere<3>(o.simplex, at_origin[4]) == expected_sphere);
+    const auto orientation = utm.orientation(u.orientation_refs), sphere = utm.side_of_oriented_sphere(u.sphere_refs);
+    const auto code = [](Maybe_sign m) { return m ? static_cast<int>(*m) : 2; };  // 2: undecided
+    CHECK(code(orientation) == code(origin.orientation(o.orientation_refs)));
+    CHECK(code(sphere) == code(origin.side_of_oriented_sphere(o.sphere_refs)));
+    if (orientation) CHECK(*orientation == expected_orientation);
+    if (sphere) CHECK(static_cast<int>(*sphere) == expected_sphere);
+    // The whole chain and the full cascade: exact, ties included.
+    std::uint32_t box_bound_left = 0;
+    CHECK(static_cast<int>(utm.side_of_oriented_sphere_sign(u.sphere_refs)) == expected_sphere);
+    CHECK(static_cast<int>(utm.side_of_oriented_sphere_sign<true>(u.sphere_refs, box_bound_left)) == expected_sphere);
+    CHECK(static_cast<int>(orientation_d<3>(u.orientation_refs)) == expected_orientation);
+    CHECK(static_cast<int>(side_of_oriented_sphere_d<3>(u.sphere_refs)) == expected_sphere);
+    if (!roof) decided += orientation.has_value() && sphere.has_value();
+    if (roof) ++ties, tie_zeros += expected_orientation == 0 && expected_sphere == 0;
+  }
+  // The box's bound decides nearly every call off the roofs (a few metres
+  // against a 500 m tile), and the roofs are exact ties.
+  CHECK(decided > cases * 2 / 3 * 9 / 10);
+  CHECK(tie_zeros > ties * 9 / 10);
+}

@@ -1,7 +1,8 @@
 // Point generators for `dewall generate`, benchmarks and tests: random sets
 // (uniform in a cube, in a ball, on a sphere, the paper's "bubbles") and exactly
 // degenerate ones (an integer grid, integer points on one sphere, points on
-// parallel planes), in E^2 … E^6.
+// parallel planes), in E^2 … E^6, and in 3D simulated sensor data (a range
+// scan, a depth-camera frame, an airborne laser scan, a repeated indoor scan).
 //
 // Randomness: one std::mt19937_64 seeded by the caller. The engine's sequence
 // is fixed by the C++ standard; the standard *distributions* are not, so the
@@ -33,6 +34,9 @@ enum class Point_kind {
   planes,          ///< points on a few hyperplanes x_{D−1} = const (exactly coplanar per plane)
   torus,           ///< uniform on a torus surface (R = 1, r = 0.3), like a scanned object's surface
   scan,            ///< a simulated range scan of objects on a table (3D only): scan lines, a 2^-16 grid
+  depth,           ///< a depth-camera frame (3D only): a few hundred planes z = c, each a near-regular grid
+  lidar,           ///< an airborne laser scan tile in UTM coordinates (3D only): a 0.5 m grid, 4 % repeats
+  indoor,          ///< the `scan` points each repeated 2 … 4 times (3D only)
 };
 
 /// Options of a generator beyond kind, size, dimension and seed.
@@ -53,10 +57,12 @@ struct Generator_options {
 };
 
 /// The kind named `name` ("uniform", "ball", "sphere", "bubbles", "grid",
-/// "lattice-sphere", "planes", "torus", "scan"), or nothing.
+/// "lattice-sphere", "planes", "torus", "scan", "depth", "lidar", "indoor"), or nothing.
 std::optional<Point_kind> parse_point_kind(std::string_view name);
 /// The name of `kind`, as parse_point_kind accepts it.
 const char* point_kind_name(Point_kind kind);
+/// Whether `kind` is made in 3D only (scan, depth, lidar, indoor).
+bool is_3d_only(Point_kind kind);
 /// "uniform, ball, …": every name, for messages.
 std::string point_kind_names();
 
@@ -64,8 +70,8 @@ std::string point_kind_names();
 /// n for the random kinds), from an engine seeded with `seed`. The deterministic
 /// kinds (grid, lattice-sphere) ignore the seed.
 /// `progress`, when given, receives the number of points made so far.
-/// \throws std::invalid_argument for a dimension outside 2 … 6 (scan: other
-/// than 3) or n < dimension + 1.
+/// \throws std::invalid_argument for a dimension outside 2 … 6 (the 3D-only
+/// kinds: other than 3) or n < dimension + 1 (indoor: n < 8).
 Point_table generate_points(Point_kind kind, std::size_t n, int dimension, std::uint64_t seed,
                             Progress* progress = nullptr);
 /// As above, with `options` (Generator_options::noise).
