@@ -493,10 +493,10 @@ class Certifier {
     // A window's records take at most half the memory of the rows (16 MB at
     // least), or the working memory when streaming: the working set stays
     // within the input's own size.
-    const std::size_t budget =
-        std::max<std::size_t>(1, (options_.stream ? stream_budget()
-                                                  : std::max<std::size_t>(std::size_t{1} << 24, rows_.size() * sizeof(Cell) / 2)) /
-                                     sizeof(Record));
+    const std::size_t bytes = options_.working_memory || options_.stream
+                                  ? stream_budget()
+                                  : std::max<std::size_t>(std::size_t{1} << 24, rows_.size() * sizeof(Cell) / 2);
+    const std::size_t budget = std::max<std::size_t>(1, bytes / sizeof(Record));
     const std::size_t ranges =
         std::clamp<std::size_t>(std::max(std::min<std::size_t>(n / 4096, 256), 4 * (total / budget + 1)), 1, std::max<std::size_t>(n, 1));
     const auto range_first = [&](std::size_t r) { return n * r / ranges; };
