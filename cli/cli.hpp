@@ -15,6 +15,7 @@
 
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/point_reader.hpp"
+#include "dewall/io/simplex_reader.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/certify/report.hpp"
 #include "dewall/error.hpp"
@@ -118,6 +119,11 @@ std::vector<kernel::Point_d<D>> kernel_points(const io::Point_table& table) {
 /// project's kernel. \throws Usage_error for an unsupported dimension.
 certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
                             const certify::Options& options);
+/// certify() of the rows `simplices` reads (a block at a time).
+certify::Report certify_file(const io::Point_table& points, io::Simplex_file_reader& simplices,
+                             const certify::Options& options);
+/// This machine's physical memory in bytes (0 when unknown).
+std::uint64_t physical_memory();
 
 /// Prints the counts, the engine, build_s=SECONDS, which construction built
 /// how many simplices, and the paper's Table 1 counters when walls ran.

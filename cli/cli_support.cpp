@@ -76,7 +76,45 @@ certify::Report certify_table(const io::Point_table& points, const io::Simplex_t
   return certify::certify<kernel::Filtered_kernel_d<D>>(p, s, options);
 }
 
+/// A simplex file as the certifier reads it: rows straight into its blocks.
+template <int D>
+class File_source final : public certify::Simplex_source<D> {
+ public:
+  explicit File_source(io::Simplex_file_reader& reader) : reader_(reader) {}
+  std::size_t read(std::span<certify::Simplex_indices<D>> rows) override {
+    return reader_.read(std::span<std::uint32_t>(reinterpret_cast<std::uint32_t*>(rows.data()), rows.size() * (D + 1)));
+  }
+  std::size_t remaining() const override {
+    const std::uint64_t m = reader_.remaining();
+    return m == ~std::uint64_t{0} ? certify::npos : static_cast<std::size_t>(m);
+  }
+
+ private:
+  io::Simplex_file_reader& reader_;
+};
+
+template <int D>
+std::span<const kernel::Point_d<D>> point_span(const io::Point_table& points) {
+  // A Point_d<D> is D doubles: the coordinates as they were read, without a copy.
+  static_assert(sizeof(kernel::Point_d<D>) == D * sizeof(double) && alignof(kernel::Point_d<D>) == alignof(double));
+  return {reinterpret_cast<const kernel::Point_d<D>*>(points.coordinates.data()), points.coordinates.size() / D};
+}
+
 }  // namespace
+
+certify::Report certify_file(const io::Point_table& points, io::Simplex_file_reader& simplices,
+                             const certify::Options& options) {
+  static_assert(sizeof(certify::Simplex_indices<3>) == 4 * sizeof(std::uint32_t));
+  return with_dimension(points.dimension, [&](auto d) {
+    File_source<d()> source(simplices);
+    return certify::certify<kernel::Filtered_kernel_d<d()>>(point_span<d()>(points), source, options);
+  });
+}
+
+std::uint64_t physical_memory() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  return pages > 0 && page_size > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size) : 0;
+}
 
 certify::Report certify_any(const io::Point_table& points, const io::Simplex_table& simplices,
                             const certify::Options& options) {

@@ -1,6 +1,8 @@
-// dewall certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N]
+// dewall certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N] [--stream] [--memory SIZE]
 #include <chrono>
+#include <cctype>
 #include <cstdio>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -13,6 +15,21 @@
 namespace dewall::cli {
 namespace {
 
+/// "512M", "4G", "65536": bytes, with K, M or G for powers of 1024.
+std::size_t parse_memory(const std::string& text) {
+  std::string digits = text;
+  std::size_t unit = 1;
+  if (!digits.empty() && std::string("kKmMgG").find(digits.back()) != std::string::npos) {
+    const char u = static_cast<char>(std::toupper(static_cast<unsigned char>(digits.back())));
+    unit = u == 'K' ? std::size_t{1} << 10 : u == 'M' ? std::size_t{1} << 20 : std::size_t{1} << 30;
+    digits.pop_back();
+  }
+  const long n = parse_long(digits, "--memory value");
+  if (n < 1 || static_cast<unsigned long>(n) > (std::size_t{1} << 50) / unit)
+    throw Usage_error("--memory must be a positive size such as 512M or 4G, not " + text);
+  return static_cast<std::size_t>(n) * unit;
+}
+
 int command_certify(int argc, char** argv) {
   bool canonical = false, json = false;
   certify::Options options;
@@ -23,6 +40,8 @@ int command_certify(int argc, char** argv) {
         else if (a == "--all") options.all = true;
         else if (a == "--json") json = true;
         else if (a == "--threads") options.threads = static_cast<unsigned>(parse_thread_count(next_arg(i, argc, argv)));
+        else if (a == "--stream") options.stream = true;
+        else if (a == "--memory") options.working_memory = parse_memory(next_arg(i, argc, argv));
         else return false;
         return true;
       });
@@ -33,23 +52,34 @@ int command_certify(int argc, char** argv) {
     return io::Parse_error(std::string(e.what()) + " (the arguments look swapped: dewall certify POINTS SIMPLICES)");
   };
   io::Point_table points;
-  io::Simplex_list list;
+  std::optional<io::Simplex_file_reader> reader;
   try {
     points = io::read_points_file(files[0]);
-    list = io::read_simplices_file(files[1], points.dimension, points.first_index);
+    reader.emplace(files[1], points.dimension, points.first_index);
   } catch (const io::Not_points_error& e) {
     throw swapped(e);
   } catch (const io::Not_simplices_error& e) {
     throw swapped(e);
   }
-  if (list.table.size() == 0)
+  const io::Simplex_list& list = reader->list();
+  if (reader->remaining() == 0)
     throw io::Parse_error(input_name(files[1]) + ": no simplices (a triangulation of " + std::to_string(points.size()) +
                           " points has at least one)");
+  // Rows that would take more than a quarter of the memory (as a binary
+  // file's header counts them; held, with their facet records, at about
+  // three times their size) stream.
+  const std::uint64_t rows = reader->remaining(), memory = physical_memory();
+  if (rows != ~std::uint64_t{0} && memory > 0 &&
+      rows * static_cast<std::uint64_t>(points.dimension + 1) * 4 > memory / 4)
+    options.stream = true;
   const std::string sname = input_name(files[1]), pname = input_name(files[0]);
 
   const auto start = std::chrono::steady_clock::now();
-  const certify::Report report = certify_any(points, list.table, options);
+  const certify::Report report = certify_file(points, *reader, options);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report.simplices == 0)
+    throw io::Parse_error(sname + ": no simplices (a triangulation of " + std::to_string(points.size()) +
+                          " points has at least one)");
 
   // Witnesses name input numbers as the files do (TetGen may count from 1).
   const std::size_t shift = points.first_index;
@@ -131,6 +161,7 @@ int command_certify(int argc, char** argv) {
 
 const bool registered = register_command({"certify", command_certify,
     "  certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N]\n"
+    "          [--stream] [--memory SIZE]\n"
     "      Decides with exact predicates whether SIMPLICES (one simplex per line,\n"
     "      zero-based indices, any order, each simplex in either orientation;\n"
     "      Qhull's 'qdelaunay Qt i' output; TetGen .ele; the binary .dwsx format;\n"
@@ -140,7 +171,14 @@ const bool registered = register_command({"certify", command_certify,
     "      violation and its witness otherwise, 2 for unreadable input.\n"
     "      --all lists every violation; --json prints a machine-readable report.\n"
     "      --threads N: at most N threads (default: the cores this process may\n"
-    "      use); the report is the same for every N.\n"});
+    "      use); the report is the same for every N.\n"
+    "      --stream keeps the simplices in temporary files ($TMPDIR, else /tmp)\n"
+    "      instead of memory, bucketed by vertex, and matches their facets bucket\n"
+    "      by bucket: memory is the points and --memory (default 512M); the same\n"
+    "      report. Chosen by itself when a .dwsx file's simplices would take more\n"
+    "      than a quarter of this machine's memory.\n"
+    "      --memory SIZE: bytes for the facet records of one window of vertices\n"
+    "      (K, M, G suffixes; default: half the simplices' size, 512M streaming).\n"});
 
 }  // namespace
 }  // namespace dewall::cli

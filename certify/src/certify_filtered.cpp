@@ -7,15 +7,13 @@
 namespace dewall::certify::detail {
 
 template <int D>
-Report certify_filtered(std::span<const kernel::Point_d<D>> points, std::span<const Simplex_indices<D>> simplices,
-                        const Options& options) {
+Report certify_filtered(std::span<const kernel::Point_d<D>> points, Simplex_source<D>& simplices, const Options& options) {
   const kernel::Fp_environment_guard guard;
-  return Certifier<kernel::Filtered_kernel_d<D>>({}, points, simplices, options).run();
+  return Certifier<kernel::Filtered_kernel_d<D>>({}, points, options).run(simplices);
 }
 
 #define DEWALL_INSTANTIATE_CERTIFY(D)                                                                         \
-  template Report certify_filtered<D>(std::span<const kernel::Point_d<D>>, std::span<const Simplex_indices<D>>, \
-                                      const Options&);
+  template Report certify_filtered<D>(std::span<const kernel::Point_d<D>>, Simplex_source<D>&, const Options&);
 DEWALL_FOR_EACH_DIMENSION(DEWALL_INSTANTIATE_CERTIFY)
 
 }  // namespace dewall::certify::detail

@@ -15,10 +15,6 @@
 namespace dewall::io {
 namespace {
 
-// Rows per chunk: 8 MiB of 4-byte indices in 3D; a corrupt count never makes
-// us allocate more than the file has delivered.
-constexpr std::size_t chunk_rows = std::size_t{1} << 19;
-
 }  // namespace
 
 void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count, int index_bytes) {
@@ -27,64 +23,82 @@ void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64
                                static_cast<std::uint32_t>(index_bytes), count});
 }
 
-Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension) {
-  const auto header = detail::read_binary_header(in, name, binary_simplices_magic, "binary simplex file");
+Binary_simplex_reader::Binary_simplex_reader(std::istream& in, std::string name, int dimension)
+    : in_(in), name_(std::move(name)), k_(static_cast<std::size_t>(dimension + 1)) {
+  const auto header = detail::read_binary_header(in, name_, binary_simplices_magic, "binary simplex file");
   if (header.version != binary_simplices_version)
-    throw Parse_error(name + ": binary simplex format version " + std::to_string(header.version) +
+    throw Parse_error(name_ + ": binary simplex format version " + std::to_string(header.version) +
                       " is not supported (1)");
   if (header.dimension != static_cast<std::uint32_t>(dimension))
-    throw Parse_error(name + ": simplices of dimension " + std::to_string(header.dimension) + ", the points are of dimension " +
-                      std::to_string(dimension));
-  const std::uint32_t width = header.field12;
-  if (width != 4 && width != 8)
-    throw Parse_error(name + ": " + std::to_string(width) + " bytes per index is not supported (4 or 8)");
-  const auto k = static_cast<std::size_t>(dimension + 1);
-  const std::uint64_t row_bytes = width * k;
-  const bool known = header.count != binary_simplices_unknown_count;
-  if (known && header.count > (std::uint64_t{1} << 56) / row_bytes)
-    throw Parse_error(name + ": the header announces an impossible simplex count " + std::to_string(header.count));
-  const std::string announced =
-      known ? std::to_string(header.count) + " simplices of dimension " + std::to_string(dimension) : "";
-  const bool sized = known && detail::check_binary_size(in, name, header.count * row_bytes, announced, "simplex");
+    throw Parse_error(name_ + ": simplices of dimension " + std::to_string(header.dimension) +
+                      ", the points are of dimension " + std::to_string(dimension));
+  width_ = header.field12;
+  if (width_ != 4 && width_ != 8)
+    throw Parse_error(name_ + ": " + std::to_string(width_) + " bytes per index is not supported (4 or 8)");
+  row_bytes_ = width_ * k_;
+  count_ = header.count;
+  known_ = count_ != binary_simplices_unknown_count;
+  if (known_ && count_ > (std::uint64_t{1} << 56) / row_bytes_)
+    throw Parse_error(name_ + ": the header announces an impossible simplex count " + std::to_string(count_));
+  announced_ = known_ ? std::to_string(count_) + " simplices of dimension " + std::to_string(dimension) : "";
+  sized_ = known_ && detail::check_binary_size(in, name_, count_ * row_bytes_, announced_, "simplex");
+}
 
+std::size_t Binary_simplex_reader::read(std::span<std::uint32_t> indices) {
+  if (ended_) return 0;
+  std::size_t rows = std::min<std::size_t>(indices.size() / k_, chunk_rows);
+  if (known_) rows = static_cast<std::size_t>(std::min<std::uint64_t>(rows, count_ - rows_read_));
+  // 4-byte little-endian indices go straight to their place; others through a buffer.
+  const bool direct = std::endian::native == std::endian::little && width_ == 4;
+  char* to = reinterpret_cast<char*>(indices.data());
+  if (!direct) {
+    bytes_.resize(rows * row_bytes_);
+    to = reinterpret_cast<char*>(bytes_.data());
+  }
+  in_.read(to, static_cast<std::streamsize>(rows * row_bytes_));
+  const auto got = static_cast<std::size_t>(in_.gcount());
+  if (known_ && got != rows * row_bytes_)
+    throw Parse_error(detail::binary_truncated(name_, announced_, count_ * row_bytes_,
+                                               detail::binary_header_size + rows_read_ * row_bytes_ + got));
+  if (!known_ && got % row_bytes_ != 0)
+    throw Parse_error(name_ + ": truncated: the file ends inside simplex " + std::to_string(rows_read_ + got / row_bytes_) +
+                      " (" + std::to_string(got % row_bytes_) + " of its " + std::to_string(row_bytes_) + " bytes)");
+  const std::size_t values = got / width_;
+  if (!direct)
+    for (std::size_t i = 0; i < values; ++i) {
+      const std::uint64_t v = detail::load_le(bytes_.data() + i * width_, static_cast<int>(width_));
+      if (v > UINT32_MAX)
+        throw Parse_error(name_ + ": simplex " + std::to_string(rows_read_ + i / k_) + ": vertex index " +
+                          std::to_string(v) + " is too large (2^32 points at most)");
+      indices[i] = static_cast<std::uint32_t>(v);
+    }
+  rows_read_ += got / row_bytes_;
+  if ((!known_ && got < rows * row_bytes_) || (known_ && rows_read_ == count_)) {
+    ended_ = true;  // the end of the input
+    if (known_ && !sized_ && in_.peek() != std::char_traits<char>::eof())
+      throw Parse_error(name_ + ": bytes after the last simplex (the header announces " + announced_ + ")");
+  }
+  return got / row_bytes_;
+}
+
+Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension) {
+  Binary_simplex_reader reader(in, name, dimension);
   Simplex_list list;
   list.format = "binary";
-  list.table.vertices_per_simplex = static_cast<int>(k);
-  if (sized) list.table.indices.reserve(header.count * k);
-  std::vector<unsigned char> bytes;
-  std::uint64_t rows_read = 0;
-  while (!known || rows_read < header.count) {
-    const auto rows = known ? static_cast<std::size_t>(std::min<std::uint64_t>(chunk_rows, header.count - rows_read))
-                            : chunk_rows;
-    bytes.resize(rows * row_bytes);
-    in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    const auto got = static_cast<std::size_t>(in.gcount());
-    if (known && got != bytes.size())
-      throw Parse_error(detail::binary_truncated(name, announced, header.count * row_bytes,
-                                                 detail::binary_header_size + rows_read * row_bytes + got));
-    if (!known && got % row_bytes != 0)
-      throw Parse_error(name + ": truncated: the file ends inside simplex " + std::to_string(rows_read + got / row_bytes) +
-                        " (" + std::to_string(got % row_bytes) + " of its " + std::to_string(row_bytes) + " bytes)");
-    const std::size_t values = got / width;
+  list.table.vertices_per_simplex = dimension + 1;
+  const auto k = static_cast<std::size_t>(dimension + 1);
+  if (reader.sized()) list.table.indices.reserve(reader.count() * k);
+  for (;;) {
     const std::size_t before = list.table.indices.size();
-    list.table.indices.resize(before + values);
-    if (std::endian::native == std::endian::little && width == 4) {  // the indices as they are
-      // (values == 0: an empty list's data() may be null, which memcpy must not get.)
-      if (values > 0) std::memcpy(list.table.indices.data() + before, bytes.data(), values * 4);
-    } else {
-      for (std::size_t i = 0; i < values; ++i) {
-        const std::uint64_t v = detail::load_le(bytes.data() + i * width, static_cast<int>(width));
-        if (v > UINT32_MAX)
-          throw Parse_error(name + ": simplex " + std::to_string(rows_read + i / k) + ": vertex index " +
-                            std::to_string(v) + " is too large (2^32 points at most)");
-        list.table.indices[before + i] = static_cast<std::uint32_t>(v);
-      }
-    }
-    rows_read += got / row_bytes;
-    if (!known && got < bytes.size()) break;  // the end of the input
+    const std::size_t want = reader.sized() ? static_cast<std::size_t>(std::min<std::uint64_t>(
+                                                  Binary_simplex_reader::chunk_rows, reader.count() - reader.rows_read()))
+                                            : Binary_simplex_reader::chunk_rows;
+    if (want == 0) break;
+    list.table.indices.resize(before + want * k);
+    const std::size_t rows = reader.read(std::span<std::uint32_t>(list.table.indices).subspan(before));
+    list.table.indices.resize(before + rows * k);
+    if (rows == 0) break;
   }
-  if (known && !sized && in.peek() != std::char_traits<char>::eof())
-    throw Parse_error(name + ": bytes after the last simplex (the header announces " + announced + ")");
   return list;
 }
 

@@ -1,5 +1,6 @@
 #include "dewall/io/simplex_reader.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdint>
 #include <string_view>
@@ -152,8 +153,9 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
   return list;
 }
 
-Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
-  Input_file file(path);
+namespace {
+
+Simplex_list read_simplices_from(Input_file& file, const std::string& path, int dimension, std::size_t first_index) {
   const std::string& name = file.name();
   const auto magic = file.prefix(4);
   if (magic == std::string_view(binary_simplices_magic, 4)) return read_binary_simplices(file.stream(), name, dimension);
@@ -178,6 +180,39 @@ Simplex_list read_simplices_file(const std::string& path, int dimension, std::si
   const bool ele = named == Named_format::tetgen_ele ||
                    detail::looks_like_tetgen(head, head.size() < 4096, detail::Tetgen_file::ele);
   return ele ? read_ele(file.stream(), name, dimension, first_index) : read_simplices(file.stream(), name, dimension);
+}
+
+}  // namespace
+
+Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index) {
+  Input_file file(path);
+  return read_simplices_from(file, path, dimension, first_index);
+}
+
+Simplex_file_reader::Simplex_file_reader(const std::string& path, int dimension, std::size_t first_index)
+    : file_(std::make_unique<Input_file>(path)), k_(static_cast<std::size_t>(dimension + 1)) {
+  if (file_->prefix(4) == std::string_view(binary_simplices_magic, 4)) {
+    binary_ = std::make_unique<Binary_simplex_reader>(file_->stream(), file_->name(), dimension);
+    list_.format = "binary";
+  } else {
+    list_ = read_simplices_from(*file_, path, dimension, first_index);
+    file_.reset();
+  }
+}
+
+Simplex_file_reader::~Simplex_file_reader() = default;
+
+std::size_t Simplex_file_reader::read(std::span<std::uint32_t> indices) {
+  if (binary_) return binary_->read(indices);
+  const std::size_t rows = std::min(indices.size() / k_, list_.table.size() - next_);
+  std::copy_n(list_.table.indices.begin() + static_cast<std::ptrdiff_t>(next_ * k_), rows * k_, indices.begin());
+  next_ += rows;
+  return rows;
+}
+
+std::uint64_t Simplex_file_reader::remaining() const {
+  if (binary_) return binary_->sized() ? binary_->count() - binary_->rows_read() : binary_simplices_unknown_count;
+  return list_.table.size() - next_;
 }
 
 }  // namespace dewall::io

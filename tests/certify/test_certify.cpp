@@ -527,6 +527,25 @@ TEST_CASE("command line: certify", "[certify][cli]") {
     CHECK(r.out.find("\"delaunay\":false") != std::string::npos);
     CHECK(r.out.find("\"line\":") != std::string::npos);
   }
+  SECTION("--stream: the same verdicts and witnesses through temporary files") {
+    std::string tri = dewall::test::slurp(d + "grid.tri");
+    write(d + "broken.tri", tri.substr(tri.find('\n') + 1) + "0 4 8\n");
+    for (const std::string file : {"grid.tri", "broken.tri"})
+      for (const std::string all : {"", " --all"}) {
+        const std::string args = "certify " + d + "grid.txt " + d + file + all;
+        const auto in_memory = run_cli(args), streamed = run_cli(args + " --stream --memory 1K");
+        INFO(args);
+        CHECK(streamed.status == in_memory.status);
+        CHECK(streamed.out == in_memory.out);
+      }
+    REQUIRE(run_cli("generate uniform 3000 --dim 3 --seed 7 -o " + d + "u.dwpt").status == 0);
+    REQUIRE(run_cli("triangulate " + d + "u.dwpt -o " + d + "u.dwsx").status == 0);
+    const auto r = run_cli("certify --canonical --stream --memory 64K " + d + "u.dwpt " + d + "u.dwsx");
+    CHECK(r.status == 0);
+    CHECK(r.out.rfind("delaunay canonical:", 0) == 0);
+    CHECK(run_cli("certify --stream --memory 0 " + d + "u.dwpt " + d + "u.dwsx").status == 2);
+    CHECK(run_cli("certify --stream --memory 12Q " + d + "u.dwpt " + d + "u.dwsx").status == 2);
+  }
   SECTION("TetGen .node/.ele numbered from 1") {
     write(d + "sq.node", "4 2 0 0\n1 0 0\n2 1 0\n3 0 1\n4 1 1\n");
     write(d + "sq.ele", "2 3 0\n1 3 1 2\n2 3 2 4\n");

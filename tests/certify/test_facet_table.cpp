@@ -29,6 +29,21 @@ namespace {
 template <int D>
 using Rows = std::vector<std::array<std::uint32_t, D + 1>>;
 
+// What a row is for these tests: not a proper simplex, or the sign of the
+// orientation of its vertices in increasing order.
+constexpr std::uint8_t row_invalid = 0, row_sorted_positive = 1;
+
+/// The rows as the certifier stores them (encode_row).
+template <int D>
+Rows<D> encoded(const Rows<D>& rows, const std::vector<std::uint8_t>& status) {
+  Rows<D> e(rows.size());
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    e[r] = status[r] == row_invalid ? certify::detail::invalid_row<D + 1>()
+                                    : certify::detail::encode_row(certify::detail::sort_row(rows[r]).v,
+                                                                  status[r] == row_sorted_positive);
+  return e;
+}
+
 /// One facet's members as (row, apex, positive), in row order.
 using Members = std::vector<std::tuple<std::size_t, std::uint32_t, bool>>;
 
@@ -39,7 +54,7 @@ template <int D>
 std::map<std::vector<std::uint32_t>, Members> brute_force(const Rows<D>& rows, const std::vector<std::uint8_t>& status) {
   std::map<std::vector<std::uint32_t>, Members> facets;
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (status[r] == certify::detail::row_invalid) continue;
+    if (status[r] == row_invalid) continue;
     for (int j = 0; j <= D; ++j) {
       std::vector<std::uint32_t> f;
       for (int i = 0; i <= D; ++i)
@@ -50,7 +65,7 @@ std::map<std::vector<std::uint32_t>, Members> brute_force(const Rows<D>& rows, c
       int inversions = 0;
       for (std::size_t a = 0; a < tuple.size(); ++a)
         for (std::size_t b = a + 1; b < tuple.size(); ++b) inversions += tuple[a] > tuple[b];
-      const bool positive = (status[r] == certify::detail::row_sorted_positive) == (inversions % 2 == 0);
+      const bool positive = (status[r] == row_sorted_positive) == (inversions % 2 == 0);
       facets[f].emplace_back(r, rows[r][static_cast<std::size_t>(j)], positive);
     }
   }
@@ -61,8 +76,8 @@ template <int D>
 void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count) {
   const auto expected = brute_force<D>(rows, status);
   std::vector<std::pair<std::vector<std::uint32_t>, Members>> got;
-  certify::detail::match_facets<D>(vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(rows),
-                                   std::span<const std::uint8_t>(status),
+  const Rows<D> e = encoded<D>(rows, status);
+  certify::detail::match_facets<D>(vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(e),
                                    [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
                                      std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
                                      f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
@@ -112,7 +127,9 @@ std::string dump(const certify::Report& r) {
   return s;
 }
 
-/// The new certifier and the reference agree, first violation and --all, on 1 and 2 threads.
+/// The certifier and the reference agree, first violation and --all: on 1 and
+/// 2 threads, in the input's numbering and renumbered, and streaming through
+/// temporary files with a working memory so small that it takes many windows.
 template <int D>
 void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, const std::string& what) {
   INFO(what << " (D = " << D << ", " << p.size() << " points, " << t.size() << " rows)");
@@ -123,7 +140,13 @@ void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, con
     const std::string expected = dump<D>(dewall::test::certify_reference<K>(points, rows, {.all = all, .threads = 1}));
     for (unsigned threads : {1u, 2u}) {
       INFO("all " << all << ", threads " << threads);
-      CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads})) == expected);
+      for (bool spatial : {false, true}) {
+        INFO("spatial order " << spatial);
+        CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .spatial_order = spatial})) == expected);
+      }
+      INFO("streaming");
+      CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .stream = true, .working_memory = 2048})) ==
+            expected);
     }
   }
 }

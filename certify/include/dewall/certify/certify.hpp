@@ -48,12 +48,19 @@
 //     the canonical one. A facet that passes 5 only unperturbed is cospherical
 //     and flipped against the perturbation: Delaunay, not canonical.
 //
-// Cost: O(n) expected to find duplicates (hashing), one orientation test per
-// simplex and one sphere test per interior facet, and O(m·(D+1)) facet records
-// filed by a counting sort on the smallest vertex (facet_table.hpp), for n
-// points and m simplices. Memory: the rows are read in place (no copy), one
-// status byte per row, and the facet records of one window of vertices at a
-// time, at most the size of the rows.
+// Cost: O(n) expected to find duplicates (hashing) and to renumber the points
+// along a Z-order curve (spatial_order.hpp: the certifier's own numbering, so
+// that the points and facets of neighbouring simplices sit side by side in
+// memory), one orientation test per simplex and one sphere test per interior
+// facet, and O(m·(D+1)) facet records filed by a counting sort on the smallest
+// vertex (facet_table.hpp), for n points and m simplices. Memory: a copy of the
+// points, the rows (4(D+1) bytes each; streaming: in temporary files, bucketed
+// by vertex ranges, row_buckets.hpp), and the facet records of one window of
+// vertices at a time. The reports name the input's numbers and follow the
+// serial walk in them (rows in order, then facets in order of their sorted
+// vertices); the work in the certifier's numbering collects what it finds and
+// sorts it into that order, and when a first violation of a facet must be
+// found without Options::all it walks the facets again in the input's numbers.
 #pragma once
 
 #include <algorithm>
@@ -77,6 +84,9 @@
 #include "dewall/certify/face_grouping.hpp"
 #include "dewall/certify/facet_table.hpp"
 #include "dewall/certify/report.hpp"
+#include "dewall/certify/row_buckets.hpp"
+#include "dewall/certify/simplex_source.hpp"
+#include "dewall/certify/spatial_order.hpp"
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
@@ -84,25 +94,17 @@
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/point.hpp"
 
-namespace dewall::certify {
-
-/// A simplex as D + 1 input indices, in any order.
-template <int D>
-using Simplex_indices = std::array<std::uint32_t, D + 1>;
-
-namespace detail {
+namespace dewall::certify::detail {
 
 /// certify() with the project's kernel, compiled into dewall::certify with the
 /// project's flags (certify/src/certify_filtered.cpp), D = 2 … 6.
 template <int D>
-Report certify_filtered(std::span<const kernel::Point_d<D>> points, std::span<const Simplex_indices<D>> simplices,
-                        const Options& options);
+Report certify_filtered(std::span<const kernel::Point_d<D>> points, Simplex_source<D>& simplices, const Options& options);
 
 template <class>
 inline constexpr bool always_false = false;
 
-}  // namespace detail
-}  // namespace dewall::certify
+}  // namespace dewall::certify::detail
 
 #ifndef DEWALL_UNSAFE_FP_FLAGS
 DEWALL_FLOATING_POINT_CODE_BEGIN
@@ -116,20 +118,19 @@ class Certifier {
   using Cell = std::array<std::uint32_t, D + 1>;
   using Cell_points = std::array<const Point*, D + 1>;
 
-  Certifier(const K& k, std::span<const Point> points, std::span<const Cell> rows, const Options& options)
-      : k_(k), points_(points), rows_(rows), options_(options), orientation_(k.orientation_d_object()) {}
+  Certifier(const K& k, std::span<const Point> points, const Options& options)
+      : k_(k), points_(points), work_(points), options_(options), orientation_(k.orientation_d_object()) {}
 
-  Report run() {
+  Report run(Simplex_source<D>& source) {
     report_.dimension = D;
     report_.points = points_.size();
-    report_.simplices = rows_.size();
     check_points();
-    if (!stop()) check_simplices();
+    if (!stop() && options_.spatial_order && !options_.stream) renumber();
+    read_rows(source);
     if (!stop()) check_vertices();
-    if (!stop()) {
-      if (2 * rows_.size() < (std::size_t{1} << 32)) check_facets<std::uint32_t>();
-      else check_facets<std::uint64_t>();
-    }
+    std::vector<std::uint32_t>().swap(first_);
+    std::vector<std::uint32_t>().swap(to_work_);
+    if (!stop() && first_row_ != npos) check_facets();
     if (!stop() && first_row_ != npos) check_boundary();
     if (!stop() && first_row_ != npos) check_covering();
     // Structural violations first, then the Delaunay ones, then notes.
@@ -151,29 +152,44 @@ class Certifier {
     bool positive;
     std::size_t row;
   };
+  /// A proper row in the certifier's numbers: its vertices in increasing
+  /// order, and whether that order is positively oriented.
+  struct Checked_row {
+    Cell sorted;
+    bool positive;
+  };
+  using Bucket_entry = typename Row_buckets<D + 1>::Entry;
+
+  static constexpr std::size_t block_rows = std::size_t{1} << 16;
 
   bool stop() const { return !options_.all && !fatal_.empty(); }
   void fail(Violation v) {
     if (!stop()) fatal_.push_back(std::move(v));
   }
 
-  Cell_points at(const Cell& c) const {
+  /// The certifier's number of input point v, and back.
+  std::uint32_t work_number(std::uint32_t v) const { return to_work_.empty() ? v : to_work_[v]; }
+  std::uint32_t input_number(std::uint32_t v) const { return to_input_.empty() ? v : to_input_[v]; }
+  bool renumbered() const { return !to_input_.empty(); }
+
+  Cell_points at(std::span<const Point> points, const Cell& c) const {
     Cell_points p;
-    for (std::size_t i = 0; i <= D; ++i) p[i] = &points_[c[i]];
+    for (std::size_t i = 0; i <= D; ++i) p[i] = &points[c[i]];
     return p;
   }
   /// The points of a facet and an apex, positively oriented: (facet…, apex),
   /// with the first two swapped when that order is negative.
-  Cell_points oriented(std::span<const std::uint32_t> facet, std::uint32_t apex, bool positive) const {
+  static Cell_points oriented(std::span<const Point> points, std::span<const std::uint32_t> facet, std::uint32_t apex,
+                              bool positive) {
     Cell_points p;
-    for (std::size_t i = 0; i < D; ++i) p[i] = &points_[facet[i]];
-    p[D] = &points_[apex];
+    for (std::size_t i = 0; i < D; ++i) p[i] = &points[facet[i]];
+    p[D] = &points[apex];
     if (!positive) std::swap(p[0], p[1]);
     return p;
   }
   /// Asks for point v's cache lines (a point may straddle two).
   void prefetch(std::uint32_t v) const {
-    const char* p = reinterpret_cast<const char*>(&points_[v]);
+    const char* p = reinterpret_cast<const char*>(&work_[v]);
     __builtin_prefetch(p);
     __builtin_prefetch(p + sizeof(Point) - 1);
   }
@@ -204,58 +220,113 @@ class Certifier {
       if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }
 
-  /// Indices, repeated vertices, later duplicates, degeneracy, on all cores
-  /// (one orientation test per row), merged in order as far as the serial walk
-  /// would have gone. The same pass counts each valid row's facets by smallest
-  /// vertex, marks its vertices used, and collects the rows that contain the
-  /// witness point (the covering test, reported in its turn).
-  void check_simplices() {
-    const std::size_t m = rows_.size(), n = points_.size();
-    status_.assign(m, row_invalid);
-    used_.assign(n, 0);
-    facet_count_.assign(n, 0);
-    // The witness lies in the first proper simplex, found before the others are checked.
-    {
-      std::vector<Violation> ignored;
-      for (std::size_t r = 0; r < m && first_row_ == npos; ++r)
-        if (checked_simplex(r, ignored)) first_row_ = r;
+  /// The certifier's numbering: along a Z-order curve, the points copied in it.
+  void renumber() {
+    const std::size_t n = points_.size();
+    if (n < 2) return;
+    to_input_ = z_order<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; });
+    to_work_.resize(n);
+    work_points_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      to_work_[to_input_[i]] = static_cast<std::uint32_t>(i);
+      work_points_[i] = points_[to_input_[i]];
+    }
+    work_ = work_points_;
+  }
+
+  /// Reads the rows a block at a time and checks each (indices, repeated
+  /// vertices, later duplicates, degeneracy: one orientation test) on all
+  /// cores, merged in order as far as the serial walk would have gone. The same
+  /// pass stores each proper row in the certifier's numbers (encode_row: in
+  /// memory, or in the bucket files when streaming), counts its facets by
+  /// smallest vertex, marks its vertices used, and collects the rows that
+  /// contain the witness point (the covering test, reported in its turn).
+  void read_rows(Simplex_source<D>& source) {
+    const std::size_t n = points_.size();
+    std::vector<Cell> block(block_rows), encoded;
+    if (!stop()) {
+      used_.assign(n, 0);
+      facet_count_.assign(n, 0);
+      if (options_.stream) {
+        // Ranges of vertices whose files hold about a quarter of a window each,
+        // assuming (D + 1)(D + 3) facets per point (a little more than uniform
+        // points have); a larger file is read once per window it spans.
+        const double records = double(n) * (D + 1) * (D + 3) * 4 * sizeof(Facet_record<D, std::uint64_t>);
+        const auto files = static_cast<std::size_t>(
+            std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 1024, 1.0, 512.0)));
+        buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
+        encoded.resize(block_rows);
+      } else if (const std::size_t m = source.remaining(); m != npos) {
+        rows_.reserve(m);
+      }
     }
     std::optional<Witness_point<K>> witness;
-    if (first_row_ != npos) {
-      first_cell_ = rows_[first_row_];
-      if (orientation_(at(first_cell_)) == kernel::NEGATIVE) std::swap(first_cell_[0], first_cell_[1]);
-      witness.emplace(k_, at(first_cell_));
-    }
-    struct Results {
-      std::vector<std::size_t> covering;
-      std::vector<Violation> fatal;
-    };
-    const std::size_t ranges = std::clamp<std::size_t>(m / 16384, 1, 256);
-    std::vector<Results> results(ranges);
-    const bool concurrent = threads_for(ranges) > 1;
-    for_each_parallel(ranges, [&](std::size_t k) {
-      Results& out = results[k];
-      const std::size_t end = m * (k + 1) / ranges;
-      for (std::size_t r = m * k / ranges; r < end && (options_.all || out.fatal.empty()); ++r) {
-        // The rows come in order, their points at random: ask for them a few rows ahead.
-        if (r + 8 < end)
-          for (std::uint32_t v : rows_[r + 8])
-            if (v < n) prefetch(v);
-        const auto s = checked_simplex(r, out.fatal);
-        if (!s) continue;
-        status_[r] = *s;
-        const Sorted_row<D + 1> sorted = sort_row(rows_[r]);
-        count(facet_count_[sorted.v[0]], D, concurrent);
-        count(facet_count_[sorted.v[1]], 1, concurrent);
-        for (std::uint32_t v : sorted.v) std::atomic_ref<std::uint8_t>(used_[v]).store(1, std::memory_order_relaxed);
-        if (r != first_row_ && contains_witness(*witness, sorted.v, *s == row_sorted_positive)) out.covering.push_back(r);
+    std::size_t r0 = 0;
+    for (std::size_t k; (k = source.read(block)) > 0; r0 += k) {
+      if (stop()) continue;  // the serial walk stopped: the rest is only counted
+      const std::span<const Cell> in(block.data(), k);
+      // The witness lies in the first proper simplex, found before the others are checked.
+      if (first_row_ == npos) {
+        std::vector<Violation> ignored;
+        for (std::size_t i = 0; i < k && first_row_ == npos; ++i)
+          if (checked_simplex(in[i], r0 + i, ignored)) first_row_ = r0 + i;
+        if (first_row_ != npos) {
+          first_cell_ = in[first_row_ - r0];
+          if (orientation_(at(points_, first_cell_)) == kernel::NEGATIVE) std::swap(first_cell_[0], first_cell_[1]);
+          Cell w;
+          for (std::size_t i = 0; i <= D; ++i) w[i] = work_number(first_cell_[i]);
+          witness.emplace(k_, at(work_, w));
+        }
       }
-    });
-    for (Results& res : results) {
-      if (stop()) break;
-      for (Violation& v : res.fatal) fail(std::move(v));
-      covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
+      Cell* out = encoded.data();
+      if (!options_.stream) {
+        rows_.resize(r0 + k);
+        out = rows_.data() + r0;
+      }
+      struct Results {
+        std::vector<std::size_t> covering;
+        std::vector<Violation> fatal;
+      };
+      const std::size_t ranges = std::clamp<std::size_t>(k / 4096, 1, 64);
+      std::vector<Results> results(ranges);
+      const bool concurrent = threads_for(ranges) > 1;
+      for_each_parallel(ranges, [&](std::size_t j) {
+        Results& res = results[j];
+        const std::size_t a = k * j / ranges, b = k * (j + 1) / ranges;
+        for (std::size_t i = a; i < b; ++i) {
+          out[i] = invalid_row<D + 1>();
+          if (!options_.all && !res.fatal.empty()) continue;
+          // The rows come in order, their points at random: ask for them a few rows ahead.
+          if (i + 8 < b)
+            for (std::uint32_t v : in[i + 8])
+              if (v < n) prefetch(work_number(v));
+          if (!to_work_.empty() && i + 16 < b)
+            for (std::uint32_t v : in[i + 16])
+              if (v < n) __builtin_prefetch(&to_work_[v]);
+          const auto s = checked_simplex(in[i], r0 + i, res.fatal);
+          if (!s) continue;
+          out[i] = encode_row(s->sorted, s->positive);
+          count(facet_count_[s->sorted[0]], D, concurrent);
+          count(facet_count_[s->sorted[1]], 1, concurrent);
+          for (std::uint32_t v : s->sorted) std::atomic_ref<std::uint8_t>(used_[v]).store(1, std::memory_order_relaxed);
+          if (r0 + i != first_row_ && contains_witness(*witness, s->sorted, s->positive)) res.covering.push_back(r0 + i);
+        }
+      });
+      for (Results& res : results) {
+        if (stop()) break;
+        for (Violation& v : res.fatal) fail(std::move(v));
+        covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
+      }
+      if (options_.stream && !stop())
+        for (std::size_t i = 0; i < k; ++i) {
+          if (!is_valid_row(out[i])) continue;
+          Cell sorted = out[i];
+          decode_row(sorted);
+          buckets_->add(r0 + i, out[i], sorted);
+        }
     }
+    report_.simplices = r0;
+    if (buckets_) buckets_->finish();
   }
 
   static void count(std::uint32_t& c, std::uint32_t k, bool concurrent) {
@@ -263,8 +334,8 @@ class Certifier {
     else c += k;
   }
 
-  /// Whether the witness point lies inside a proper simplex (vertices in
-  /// increasing order, with that order's orientation).
+  /// Whether the witness point lies inside a proper simplex (the certifier's
+  /// numbers, increasing, with that order's orientation).
   bool contains_witness(const Witness_point<K>& o, const Cell& sorted, bool positive) const {
     if constexpr (kernel::approximate_coordinates_are_exact<K>) {
       // o is infinitesimally close to its anchor, an input point: a cell whose
@@ -275,23 +346,22 @@ class Certifier {
       for (int j = 0; j < D; ++j) {
         bool below = true, above = true;
         for (std::uint32_t v : sorted) {
-          const double c = coords(points_[v])[static_cast<std::size_t>(j)];
+          const double c = coords(work_[v])[static_cast<std::size_t>(j)];
           below = below && x[static_cast<std::size_t>(j)] < c;
           above = above && x[static_cast<std::size_t>(j)] > c;
         }
         if (below || above) return false;
       }
     }
-    Cell_points p = at(sorted);
+    Cell_points p = at(work_, sorted);
     if (!positive) std::swap(p[0], p[1]);
     return o.inside(p);
   }
 
-  /// Row r's status (the orientation of its sorted vertices), or nothing (its
-  /// violations appended to `fatal`).
-  std::optional<Row_status> checked_simplex(std::size_t r, std::vector<Violation>& fatal) const {
+  /// Row r (input numbers) in the certifier's numbers, sorted, with its
+  /// orientation, or nothing (its violations appended to `fatal`).
+  std::optional<Checked_row> checked_simplex(const Cell& c, std::size_t r, std::vector<Violation>& fatal) const {
     const std::size_t n = points_.size();
-    const Cell& c = rows_[r];
     bool ok = true;
     for (std::uint32_t v : c)
       if (v >= n) {
@@ -312,17 +382,21 @@ class Certifier {
       }
     }
     if (!ok) return std::nullopt;
-    const kernel::Sign s = orientation_(at(sorted));
-    if (s == kernel::ZERO) {
+    Cell w;
+    for (std::size_t i = 0; i <= D; ++i) w[i] = work_number(c[i]);
+    const Cell s = to_work_.empty() ? sorted : sort_row(w).v;
+    const kernel::Sign o = orientation_(at(work_, s));
+    if (o == kernel::ZERO) {
       fatal.push_back({.rule = Rule::degenerate_simplex, .simplex = r});
       return std::nullopt;
     }
-    return s == kernel::POSITIVE ? row_sorted_positive : row_sorted_negative;
+    return Checked_row{s, o == kernel::POSITIVE};
   }
 
   void check_vertices() {
     for (std::size_t i = 0; i < points_.size() && !stop(); ++i)
-      if (!bad_point_[i] && first_[i] == i && !used_[i]) fail({.rule = Rule::point_not_a_vertex, .point = i});
+      if (!bad_point_[i] && first_[i] == i && !used_[work_number(static_cast<std::uint32_t>(i))])
+        fail({.rule = Rule::point_not_a_vertex, .point = i});
   }
 
   /// What the facet checks of a range of vertices found, in vertex order.
@@ -332,49 +406,150 @@ class Certifier {
     std::size_t interior_facets = 0, cospherical_facets = 0;
   };
 
+  std::size_t stream_budget() const {
+    return options_.working_memory ? options_.working_memory : std::size_t{1} << 29;
+  }
+
+  /// The facet checks in the certifier's numbers; when a first violation of a
+  /// facet must be named (not Options::all), the walk that finds it runs in the
+  /// input's numbers, whose order the reports follow.
+  void check_facets() {
+    facets_pass();
+    if (renumbered() && !options_.all && (!facet_fatal_.empty() || !delaunay_.empty())) {
+      to_input_numbers();
+      facets_pass();
+    }
+    if (renumbered()) {
+      // What the walk in the certifier's numbers found, in the input's order.
+      const auto by_face = [](const Violation& a, const Violation& b) { return a.face < b.face; };
+      for (auto* list : {&facet_fatal_, &delaunay_, &notes_}) {
+        std::stable_sort(list->begin(), list->end(), by_face);
+        for (Violation& v : *list)
+          if (v.rule == Rule::duplicate_simplex) v.face.clear();
+      }
+      for (Boundary_facet& b : boundary_) {
+        std::array<std::uint32_t, D> f;
+        for (std::size_t i = 0; i < D; ++i) f[i] = to_input_[b.facet[i]];
+        const auto s = sort_row(f);
+        b = {s.v, to_input_[b.apex], b.positive != s.odd, b.row};
+      }
+      std::sort(boundary_.begin(), boundary_.end(), [](const Boundary_facet& a, const Boundary_facet& b) { return a.facet < b.facet; });
+    }
+    for (Violation& v : facet_fatal_) fail(std::move(v));
+    std::vector<std::uint32_t>().swap(facet_count_);
+    std::vector<Cell>().swap(rows_);
+    buckets_.reset();
+  }
+
+  /// Back to the input's numbers: the rows renumbered in place, the facets recounted.
+  void to_input_numbers() {
+    for_each_parallel(std::max<std::size_t>(1, rows_.size() / 65536), [&](std::size_t j) {
+      const std::size_t parts = std::max<std::size_t>(1, rows_.size() / 65536);
+      for (std::size_t r = rows_.size() * j / parts; r < rows_.size() * (j + 1) / parts; ++r) {
+        Cell c = rows_[r];
+        if (!is_valid_row(c)) continue;
+        const bool positive = decode_row(c);
+        for (auto& v : c) v = to_input_[v];
+        const auto s = sort_row(c);
+        rows_[r] = encode_row(s.v, positive != s.odd);
+      }
+    });
+    facet_count_.assign(points_.size(), 0);
+    for (Cell c : rows_) {
+      if (!is_valid_row(c)) continue;
+      decode_row(c);
+      facet_count_[c[0]] += D;
+      ++facet_count_[c[1]];
+    }
+    std::vector<std::uint32_t>().swap(to_input_);
+    std::vector<Point>().swap(work_points_);
+    work_ = points_;
+    boundary_.clear();
+    facet_fatal_.clear();
+    delaunay_.clear();
+    notes_.clear();
+    report_.interior_facets = report_.cospherical_facets = 0;
+  }
+
+  void facets_pass() {
+    if (2 * report_.simplices < (std::size_t{1} << 32)) facets_pass<std::uint32_t>();
+    else facets_pass<std::uint64_t>();
+  }
+
   /// Facet matching, opposite sides, and the local Delaunay tests. The facets
   /// are filed by smallest vertex (facet_table.hpp), a window of vertices at a
   /// time so that the records stay within a budget of memory, and ranges of
   /// vertices are checked on all cores. The ranges are fixed by the number of
-  /// points and merged in order, each as far as the serial walk would have gone
-  /// (it stops at the first fatal violation, and tests no sphere after the first
-  /// Delaunay one), so the report is the same for any number of threads.
+  /// points and the budget, and merged in order, each as far as the serial walk
+  /// would have gone (it stops at the first fatal violation, and tests no
+  /// sphere after the first Delaunay one), so the report is the same for any
+  /// number of threads.
   template <class Row>
-  void check_facets() {
+  void facets_pass() {
     using Record = Facet_record<D, Row>;
     const std::size_t n = points_.size();
-    const std::size_t ranges = std::clamp<std::size_t>(n / 4096, 1, 256);
+    std::size_t total = 0;
+    for (std::uint32_t c : facet_count_) total += c;
+    // A window's records take at most half the memory of the rows (16 MB at
+    // least), or the working memory when streaming: the working set stays
+    // within the input's own size.
+    const std::size_t bytes = options_.working_memory || options_.stream
+                                  ? stream_budget()
+                                  : std::max<std::size_t>(std::size_t{1} << 24, rows_.size() * sizeof(Cell) / 2);
+    const std::size_t budget = std::max<std::size_t>(1, bytes / sizeof(Record));
+    const std::size_t ranges =
+        std::clamp<std::size_t>(std::max(std::min<std::size_t>(n / 4096, 256), 4 * (total / budget + 1)), 1, std::max<std::size_t>(n, 1));
     const auto range_first = [&](std::size_t r) { return n * r / ranges; };
     std::vector<std::size_t> range_facets(ranges, 0);
     for (std::size_t r = 0; r < ranges; ++r)
       for (std::size_t v = range_first(r); v < range_first(r + 1); ++v) range_facets[r] += facet_count_[v];
-    // A window's records take at most the memory of the rows (and 16 MB at
-    // least): the working set stays within the input's own size.
-    const std::size_t budget = std::max<std::size_t>(std::size_t{1} << 24, rows_.size_bytes()) / sizeof(Record);
     // The windows: consecutive ranges, as many as fit the budget (one at least).
     std::vector<std::size_t> window_first{0};
     std::size_t largest = 0;
-    for (std::size_t r = 0, total = 0; r < ranges; ++r) {
-      if (r > window_first.back() && total + range_facets[r] > budget) {
+    for (std::size_t r = 0, sum = 0; r < ranges; ++r) {
+      if (r > window_first.back() && sum + range_facets[r] > budget) {
         window_first.push_back(r);
-        total = 0;
+        sum = 0;
       }
-      total += range_facets[r];
-      largest = std::max(largest, total);
+      sum += range_facets[r];
+      largest = std::max(largest, sum);
     }
     window_first.push_back(ranges);
     std::vector<Record> storage(largest);
     std::vector<Facet_results> results(ranges);
-    for (std::size_t w = 0; w + 1 < window_first.size() && !stop(); ++w) {
+    std::vector<Bucket_entry> chunk(buckets_ ? std::max<std::size_t>(1024, std::min<std::size_t>(1 << 16, budget / 8)) : 0);
+    for (std::size_t w = 0; w + 1 < window_first.size() && !stop_facets(); ++w) {
       const std::size_t first = window_first[w], last = window_first[w + 1];
-      Facet_window<D, Row> window(facet_count_, range_first(first), range_first(last), storage);
+      const std::size_t a = range_first(first), b = range_first(last);
+      Facet_window<D, Row> window(facet_count_, a, b, storage);
       // One part of the window's vertices per thread, each reading every row.
-      const std::size_t a = range_first(first), b = range_first(last), parts = threads_for(b - a);
-      for_each_parallel(parts, [&](std::size_t k) { window.file(rows_, status_, a + (b - a) * k / parts, a + (b - a) * (k + 1) / parts); });
+      const std::size_t parts = threads_for(b - a);
+      const auto part = [&](std::size_t lo, std::size_t hi, std::size_t k) {
+        return std::pair{lo + (hi - lo) * k / parts, lo + (hi - lo) * (k + 1) / parts};
+      };
+      if (!buckets_) {
+        for_each_parallel(parts, [&](std::size_t k) {
+          const auto [lo, hi] = part(a, b, k);
+          window.file(std::span<const Cell>(rows_), 0, lo, hi);
+        });
+      } else {
+        // The files of the ranges of vertices the window meets; from each, only
+        // the facets whose smallest vertex is in both (a row is in two files
+        // when its two smallest vertices are in two ranges).
+        for (std::size_t f = buckets_->bucket_of(static_cast<std::uint32_t>(a)); f < buckets_->size() && buckets_->first_vertex(f) < b; ++f) {
+          const std::size_t lo = std::max(a, buckets_->first_vertex(f)), hi = std::min(b, buckets_->first_vertex(f + 1));
+          buckets_->for_each(f, chunk, [&](std::span<const Bucket_entry> entries) {
+            for_each_parallel(parts, [&](std::size_t k) {
+              const auto [plo, phi] = part(lo, hi, k);
+              for (const Bucket_entry& e : entries) window.file(e.cell, static_cast<std::size_t>(e.row), plo, phi);
+            });
+          });
+        }
+      }
       for_each_parallel(last - first, [&](std::size_t i) {
         const std::size_t r = first + i;
-        // The points of a bucket are its vertex's neighbours, at random places:
-        // asked for one bucket ahead, their cache misses overlap.
+        // The points of a bucket are its vertex's neighbours: asked for one
+        // bucket ahead, their cache misses overlap.
         window.for_groups(
             range_first(r), range_first(r + 1),
             [&](std::size_t v, std::span<const Record> g) {
@@ -390,32 +565,54 @@ class Certifier {
       });
       merge(std::span<Facet_results>(results).subspan(first, last - first));
     }
-    std::vector<std::uint32_t>().swap(facet_count_);
+  }
+
+  /// Whether the walk can stop: a facet's fatal violation is the first one in
+  /// the input's order (unless Options::all), or, renumbered, the walk in the
+  /// input's numbers will name it.
+  bool stop_facets() const {
+    if (options_.all) return false;
+    return !facet_fatal_.empty() || (renumbered() && !delaunay_.empty());
   }
 
   void merge(std::span<Facet_results> results) {
     for (Facet_results& r : results) {
-      if (stop()) break;
+      if (stop_facets()) break;
       boundary_.insert(boundary_.end(), r.boundary.begin(), r.boundary.end());
       report_.interior_facets += r.interior_facets;
-      for (Violation& v : r.fatal) fail(std::move(v));
+      for (Violation& v : r.fatal)
+        if (options_.all || facet_fatal_.empty()) facet_fatal_.push_back(std::move(v));
       if (!options_.all && !delaunay_.empty()) continue;  // the serial walk tested no more spheres
       report_.cospherical_facets += r.cospherical_facets;
       delaunay_.insert(delaunay_.end(), r.delaunay.begin(), r.delaunay.end());
-      for (Violation& v : r.notes)
+      for (Violation& v : r.notes) {
         if (options_.all || notes_.empty()) notes_.push_back(std::move(v));
+        else if (renumbered() && v.face < notes_[0].face) notes_[0] = std::move(v);  // the first in the input's order
+      }
       r = {};
     }
   }
 
+  /// A facet of the certifier's numbers as reported: in the input's, increasing.
+  std::vector<std::uint32_t> input_face(const std::array<std::uint32_t, D>& facet) const {
+    std::vector<std::uint32_t> f(facet.begin(), facet.end());
+    if (renumbered()) {
+      for (auto& v : f) v = to_input_[v];
+      std::sort(f.begin(), f.end());
+    }
+    return f;
+  }
+
   /// The checks of one facet (smallest vertex v) and its simplices, into `out`.
+  /// Renumbered, every violation carries its facet (the key of the input's
+  /// order), and a range keeps the note of the smallest facet.
   template <class Row>
   void check_facet_group(std::uint32_t v, std::span<const Facet_record<D, Row>> g, Facet_results& out) const {
     if (!options_.all && !out.fatal.empty()) return;
     std::array<std::uint32_t, D> facet;
     facet[0] = v;
     std::copy(g[0].rest.begin(), g[0].rest.end(), facet.begin() + 1);
-    const auto face = [&] { return std::vector<std::uint32_t>(facet.begin(), facet.end()); };
+    const auto face = [&] { return input_face(facet); };
     if (g.size() == 1) {
       out.boundary.push_back({facet, g[0].apex, g[0].positive(), g[0].row()});
       return;
@@ -426,7 +623,8 @@ class Certifier {
     }
     const std::uint32_t a = g[0].apex, b = g[1].apex;
     if (a == b) {
-      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = g[0].row(), .other_simplex = g[1].row()});
+      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = g[0].row(), .other_simplex = g[1].row(),
+                           .face = renumbered() ? face() : std::vector<std::uint32_t>{}});
       return;
     }
     // Both rows were found proper: (facet, a) and (facet, b) have known, non-zero
@@ -438,19 +636,21 @@ class Certifier {
     ++out.interior_facets;
     if (!options_.all && !out.delaunay.empty()) return;  // one witness is enough
     std::array<const Point*, D + 2> s;
-    const Cell_points p = oriented(facet, a, g[0].positive());
+    const Cell_points p = oriented(work_, facet, a, g[0].positive());
     std::copy(p.begin(), p.end(), s.begin());
-    s[D + 1] = &points_[b];
+    s[D + 1] = &work_[b];
     const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     const auto witness = [&](Rule rule) {
-      return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = b};
+      return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = input_number(b)};
     };
     if (side == kernel::ON_POSITIVE_SIDE) {
       out.delaunay.push_back(witness(Rule::not_locally_delaunay));
     } else if (side == kernel::ON_ORIENTED_BOUNDARY) {
       ++out.cospherical_facets;
-      if (k_.side_of_oriented_sphere_d_object()(s) == kernel::ON_POSITIVE_SIDE && (options_.all || out.notes.empty()))
-        out.notes.push_back(witness(Rule::not_canonical));
+      if (k_.side_of_oriented_sphere_d_object()(s) == kernel::ON_POSITIVE_SIDE) {
+        if (options_.all || out.notes.empty()) out.notes.push_back(witness(Rule::not_canonical));
+        else if (renumbered() && face() < out.notes[0].face) out.notes[0] = witness(Rule::not_canonical);
+      }
     }
   }
 
@@ -467,7 +667,7 @@ class Certifier {
   /// The threads for_each_parallel(count, …) runs on.
   unsigned threads_for(std::size_t count) const {
     const unsigned threads = options_.threads ? options_.threads : available_cores();
-    return static_cast<unsigned>(std::min<std::size_t>(threads, count));
+    return static_cast<unsigned>(std::max<std::size_t>(1, std::min<std::size_t>(threads, count)));
   }
 
   /// Calls f(0) … f(count − 1), on up to Options::threads threads (0: all
@@ -501,8 +701,9 @@ class Certifier {
       if (e) std::rethrow_exception(e);
   }
 
-  /// The boundary: a closed surface (every ridge in two boundary facets),
-  /// locally convex at every ridge, facing away from the witness point.
+  /// The boundary (input numbers): a closed surface (every ridge in two
+  /// boundary facets), locally convex at every ridge, facing away from the
+  /// witness point.
   void check_boundary() {
     report_.boundary_facets = boundary_.size();
     std::vector<std::array<std::uint32_t, D>> facets(boundary_.size());
@@ -521,24 +722,24 @@ class Certifier {
                        const Boundary_facet& bf = boundary_[f.row];
                        const std::uint32_t far = facets[o.row][static_cast<std::size_t>(o.position)];
                        // The simplex's inner side is its apex's: `far` must not be strictly across.
-                       if (orientation_(oriented(bf.facet, far, bf.positive)) == kernel::NEGATIVE) {
+                       if (orientation_(oriented(points_, bf.facet, far, bf.positive)) == kernel::NEGATIVE) {
                          fail({.rule = Rule::boundary_not_convex, .simplex = bf.row, .other_simplex = boundary_[o.row].row,
                                .face = without(bf.facet, bf.facet[static_cast<std::size_t>(f.position)]), .point = far});
                          return;
                        }
                      }
                    });
-    const Witness_point<K> o(k_, at(first_cell_));
+    const Witness_point<K> o(k_, at(points_, first_cell_));
     for (const auto& b : boundary_) {
       if (stop()) return;
-      if (o.side_of_facet(oriented(b.facet, b.apex, b.positive), D) != kernel::POSITIVE)
+      if (o.side_of_facet(oriented(points_, b.facet, b.apex, b.positive), D) != kernel::POSITIVE)
         fail({.rule = Rule::boundary_facet_inward, .simplex = b.row, .other_simplex = first_row_,
               .face = std::vector<std::uint32_t>(b.facet.begin(), b.facet.end())});
     }
   }
 
   /// The global test: no simplex but the first contains the witness point
-  /// (the rows that do were collected by check_simplices).
+  /// (the rows that do were collected by read_rows).
   void check_covering() {
     for (std::size_t t : covering_) {
       if (stop()) return;
@@ -547,21 +748,24 @@ class Certifier {
   }
 
   const K& k_;
-  std::span<const Point> points_;
-  std::span<const Cell> rows_;
+  std::span<const Point> points_;  // in the input's numbers
+  std::span<const Point> work_;    // in the certifier's: work_points_, or points_
   Options options_;
   decltype(std::declval<const K&>().orientation_d_object()) orientation_;
   Report report_;
-  std::vector<Violation> fatal_, delaunay_, notes_;
+  std::vector<Violation> fatal_, facet_fatal_, delaunay_, notes_;
   std::vector<bool> bad_point_;
-  std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
   std::vector<std::uint32_t> first_;
-  std::vector<std::uint8_t> status_;        // Row_status of every row
+  std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
+  std::vector<Point> work_points_;
+  std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
   std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex
+  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory)
+  std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)
   std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it
-  Cell first_cell_{};                       // its vertices, positively oriented
+  Cell first_cell_{};                       // its vertices (input numbers), positively oriented
   std::vector<std::size_t> covering_;       // other rows that contain the witness
-  std::vector<Boundary_facet> boundary_;    // facets of one simplex, in facet order
+  std::vector<Boundary_facet> boundary_;    // facets of one simplex, in facet order (input numbers)
 };
 
 }  // namespace dewall::certify::detail
@@ -570,20 +774,22 @@ DEWALL_FLOATING_POINT_CODE_END
 
 namespace dewall::certify {
 
-/// Decides whether `simplices` (rows of D + 1 input indices, any vertex order,
-/// any row order) is a Delaunay triangulation of `points`, and whether it is
-/// the canonical one (the symbolically perturbed Delaunay triangulation CGAL
-/// and dewall compute). Duplicate points: the first occurrence must be the
-/// vertex, later copies must not appear. See the file comment for the checks
-/// and why they suffice.
+/// Decides whether the rows of `simplices` (each D + 1 input indices, any
+/// vertex order, any row order) form a Delaunay triangulation of `points`, and
+/// whether it is the canonical one (the symbolically perturbed Delaunay
+/// triangulation CGAL and dewall compute). Duplicate points: the first
+/// occurrence must be the vertex, later copies must not appear. See the file
+/// comment for the checks and why they suffice. The source is read once, in
+/// blocks; with Options::stream the rows go to temporary files (row_buckets.hpp).
 /// With the project's kernel the check runs in the compiled library, whatever
 /// the caller's floating-point flags; with another kernel it is compiled here,
 /// and refuses to compile under flags that break its arithmetic (floating_point.hpp).
-/// Complexity: O(n log n + m·D²) predicates and bookkeeping, n points, m simplices.
+/// Complexity: O(n + m·D²) predicates and bookkeeping expected, n points, m simplices.
+/// \throws what the source throws; std::runtime_error when a temporary file
+/// cannot be written; std::bad_alloc.
 template <kernel::DelaunayKernel K>
-Report certify(std::span<const typename K::Point_d> points,
-               std::span<const Simplex_indices<K::dimension>> simplices, const Options& options = {},
-               const K& k = {}) {
+Report certify(std::span<const typename K::Point_d> points, Simplex_source<K::dimension>& simplices,
+               const Options& options = {}, const K& k = {}) {
   if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
     return detail::certify_filtered<K::dimension>(points, simplices, options);
   } else {
@@ -595,9 +801,18 @@ Report certify(std::span<const typename K::Point_d> points,
     return {};
 #else
     const kernel::Fp_environment_guard guard;
-    return detail::Certifier<K>(k, points, simplices, options).run();
+    return detail::Certifier<K>(k, points, options).run(simplices);
 #endif
   }
+}
+
+/// The rows of a span (copied into the certifier's own numbering as they are read).
+template <kernel::DelaunayKernel K>
+Report certify(std::span<const typename K::Point_d> points,
+               std::span<const Simplex_indices<K::dimension>> simplices, const Options& options = {},
+               const K& k = {}) {
+  Span_source<K::dimension> source(simplices);
+  return certify<K>(points, source, options, k);
 }
 
 /// Convenience form for vectors.

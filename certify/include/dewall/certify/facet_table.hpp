@@ -27,10 +27,6 @@
 
 namespace dewall::certify::detail {
 
-/// What the certifier learnt of a row: not a proper simplex, or the sign of
-/// the orientation of its vertices in increasing index order.
-enum Row_status : std::uint8_t { row_invalid = 0, row_sorted_positive = 1, row_sorted_negative = 2 };
-
 /// The K indices of a row in increasing order, and whether sorting them took
 /// an odd permutation.
 template <std::size_t K>
@@ -93,23 +89,49 @@ struct Facet_record {
   }
 };
 
-/// Calls f(v, record) for every facet of a valid row (status[r] != row_invalid)
-/// whose smallest vertex v lies in [first, last). `sorted_positive`: the
-/// orientation of the row's vertices in increasing order.
+/// A valid row as the certifier stores it: its vertices in increasing order
+/// when that order is positively oriented, else with the last two exchanged
+/// (the vertices are distinct, so the order of the last two tells which). An
+/// invalid row (no proper simplex) repeats its first vertex.
+template <std::size_t K>
+inline std::array<std::uint32_t, K> encode_row(const std::array<std::uint32_t, K>& sorted, bool sorted_positive) {
+  std::array<std::uint32_t, K> c = sorted;
+  if (!sorted_positive) std::swap(c[K - 2], c[K - 1]);
+  return c;
+}
+template <std::size_t K>
+inline std::array<std::uint32_t, K> invalid_row() {
+  std::array<std::uint32_t, K> c{};
+  return c;
+}
+template <std::size_t K>
+inline bool is_valid_row(const std::array<std::uint32_t, K>& c) {
+  return c[0] != c[1];
+}
+/// The sorted vertices of an encoded valid row; returns whether that order is positive.
+template <std::size_t K>
+inline bool decode_row(std::array<std::uint32_t, K>& c) {
+  const bool positive = c[K - 2] < c[K - 1];
+  if (!positive) std::swap(c[K - 2], c[K - 1]);
+  return positive;
+}
+
+/// Calls f(v, record) for every facet of a valid row, given by its vertices in
+/// increasing order `s` and that order's orientation, whose smallest vertex v
+/// lies in [first, last).
 template <int D, class Row, class F>
-inline void for_each_facet_record(const std::array<std::uint32_t, D + 1>& row, std::size_t r, bool sorted_positive,
+inline void for_each_facet_record(const std::array<std::uint32_t, D + 1>& s, std::size_t r, bool sorted_positive,
                                   std::size_t first, std::size_t last, F&& f) {
-  const Sorted_row<D + 1> s = sort_row(row);
   // The facets' smallest vertices are s[1] (the facet without s[0]) and s[0]:
   // a row with no vertex in the window files nothing (most rows, most windows).
-  if (s.v[0] >= last || s.v[1] < first) return;
+  if (s[0] >= last || s[1] < first) return;
   for (int j = 0; j <= D; ++j) {
-    const std::uint32_t smallest = s.v[j == 0 ? 1 : 0];
+    const std::uint32_t smallest = s[j == 0 ? 1 : 0];
     if (smallest < first || smallest >= last) continue;
     Facet_record<D, Row> rec;
     for (int i = 0, k = 0; i <= D; ++i)
-      if (i != j && s.v[static_cast<std::size_t>(i)] != smallest) rec.rest[static_cast<std::size_t>(k++)] = s.v[static_cast<std::size_t>(i)];
-    rec.apex = s.v[static_cast<std::size_t>(j)];
+      if (i != j && s[static_cast<std::size_t>(i)] != smallest) rec.rest[static_cast<std::size_t>(k++)] = s[static_cast<std::size_t>(i)];
+    rec.apex = s[static_cast<std::size_t>(j)];
     // (smallest, rest…, apex) is the sorted order with s[j] moved to the end:
     // D − j transpositions.
     const bool positive = sorted_positive != ((D - j) % 2 == 1);
@@ -138,17 +160,21 @@ class Facet_window {
   std::size_t first() const { return first_; }
   std::size_t last() const { return first_ + next_.size(); }
 
-  /// Files the facets of all rows whose smallest vertex is in [v_first,
-  /// v_last), inside the window. Disjoint vertex ranges may be filed at once on
-  /// different threads: they write disjoint buckets (no atomic counters, whose
-  /// locked instructions would stall every scattered store behind them).
-  void file(std::span<const std::array<std::uint32_t, D + 1>> rows, std::span<const std::uint8_t> status,
-            std::size_t v_first, std::size_t v_last) {
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-      if (status[r] == row_invalid) continue;
-      for_each_facet_record<D, Row>(rows[r], r, status[r] == row_sorted_positive, v_first, v_last,
-                                    [&](std::size_t v, const Record& rec) { records_[next_[v - first_]++] = rec; });
-    }
+  /// Files the facets of row r (encoded: encode_row) whose smallest vertex is
+  /// in [v_first, v_last), inside the window. Disjoint vertex ranges may be
+  /// filed at once on different threads: they write disjoint buckets (no
+  /// atomic counters, whose locked instructions would stall every scattered
+  /// store behind them).
+  void file(std::array<std::uint32_t, D + 1> row, std::size_t r, std::size_t v_first, std::size_t v_last) {
+    if (!is_valid_row(row) || row[0] >= v_last) return;
+    const bool positive = decode_row(row);
+    for_each_facet_record<D, Row>(row, r, positive, v_first, v_last,
+                                  [&](std::size_t v, const Record& rec) { records_[next_[v - first_]++] = rec; });
+  }
+  /// file() for rows[0 …] numbered from `first_row`.
+  void file(std::span<const std::array<std::uint32_t, D + 1>> rows, std::size_t first_row, std::size_t v_first,
+            std::size_t v_last) {
+    for (std::size_t i = 0; i < rows.size(); ++i) file(rows[i], first_row + i, v_first, v_last);
   }
 
   /// Calls group(v, std::span<const Record>) once for every distinct facet whose
@@ -200,30 +226,28 @@ class Facet_window {
   Record* records_;
 };
 
-/// Facets per smallest vertex of the valid rows, serially (tests; the certifier
-/// counts while it validates).
+/// Facets per smallest vertex of encoded rows, serially (tests; the
+/// certifier counts while it validates).
 template <int D>
-std::vector<std::uint32_t> facet_counts(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> rows,
-                                        std::span<const std::uint8_t> status) {
+std::vector<std::uint32_t> facet_counts(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> rows) {
   std::vector<std::uint32_t> counts(vertex_count, 0);
-  for (std::size_t r = 0; r < rows.size(); ++r) {
-    if (status[r] == row_invalid) continue;
-    const Sorted_row<D + 1> s = sort_row(rows[r]);
-    counts[s.v[0]] += D;
-    ++counts[s.v[1]];
+  for (auto row : rows) {
+    if (!is_valid_row(row)) continue;
+    decode_row(row);
+    counts[row[0]] += D;
+    ++counts[row[1]];
   }
   return counts;
 }
 
-/// All the facet groups of the valid rows, serially, in one window: group(v,
+/// All the facet groups of encoded rows, serially, in one window: group(v,
 /// records) as Facet_window::for_groups calls it. For tests and small inputs.
 template <int D, class Row = std::uint64_t, class Group>
-void match_facets(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> rows,
-                  std::span<const std::uint8_t> status, Group&& group) {
-  const auto counts = facet_counts<D>(vertex_count, rows, status);
+void match_facets(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> rows, Group&& group) {
+  const auto counts = facet_counts<D>(vertex_count, rows);
   std::vector<Facet_record<D, Row>> storage;
   Facet_window<D, Row> window(counts, 0, vertex_count, storage);
-  window.file(rows, status, 0, vertex_count);
+  window.file(rows, 0, 0, vertex_count);
   window.for_groups(0, vertex_count, group);
 }
 

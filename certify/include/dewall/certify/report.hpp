@@ -98,6 +98,22 @@ struct Options {
   bool all = false;
   /// At most this many threads (0: all cores). The report is the same for every value.
   unsigned threads = 0;
+  /// Renumber the points along a Z-order curve inside the certifier, the rows
+  /// as they are read: the points of neighbouring simplices then sit side by
+  /// side in memory (it takes a copy of the points). Reports are in the
+  /// input's numbers, and the same either way. Not used when streaming.
+  bool spatial_order = true;
+  /// Stream: keep the rows in temporary files, one per range of vertices,
+  /// instead of memory, and match the facets range by range. Memory: the
+  /// points, a few bytes per point, and `working_memory`.
+  bool stream = false;
+  /// Bytes for the facet records of one window of vertices (and, streaming,
+  /// the file buffers); 0: as large as the rows in memory, or 512 MiB
+  /// streaming. A window holds one range of vertices at least.
+  std::size_t working_memory = 0;
+  /// Where streaming writes its temporary files (empty: $TMPDIR, else /tmp);
+  /// they are unlinked as soon as they are open.
+  std::string temp_directory = {};
 };
 
 /// A one-line English description of `v`; `name` turns a simplex row into

@@ -22,6 +22,7 @@
 #include <iosfwd>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "dewall/io/simplex_reader.hpp"
 
@@ -45,6 +46,35 @@ void write_binary_simplices(std::ostream& out, const Simplex_table& t, Progress*
 void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64_t count, int index_bytes = 4);
 /// Byte offset of the header's count field.
 inline constexpr std::size_t binary_simplices_count_offset = 16;
+
+/// A binary simplex file read a block of rows at a time (dewall certify reads
+/// its rows so, never holding the file twice).
+class Binary_simplex_reader {
+ public:
+  /// Reads and checks the header from `in` (opened in binary mode), magic
+  /// included. \throws Parse_error as read_binary_simplices.
+  Binary_simplex_reader(std::istream& in, std::string name, int dimension);
+  /// Reads the next whole rows into `indices` (at most indices.size() / (D + 1),
+  /// and at most 2^19 at a time: a corrupt count never makes a caller allocate
+  /// more than the file has delivered); returns how many, 0 at the end.
+  /// \throws Parse_error as read_binary_simplices.
+  std::size_t read(std::span<std::uint32_t> indices);
+  /// The count in the header (binary_simplices_unknown_count when unknown).
+  std::uint64_t count() const { return count_; }
+  /// Whether the count is known and the file's size matches it.
+  bool sized() const { return sized_; }
+  std::uint64_t rows_read() const { return rows_read_; }
+
+  static constexpr std::size_t chunk_rows = std::size_t{1} << 19;
+
+ private:
+  std::istream& in_;
+  std::string name_, announced_;
+  std::size_t k_, width_ = 4, row_bytes_ = 0;
+  std::uint64_t count_ = 0, rows_read_ = 0;
+  bool known_ = false, sized_ = false, ended_ = false;
+  std::vector<unsigned char> bytes_;
+};
 
 /// Reads a binary simplex file from `in` (opened in binary mode), magic
 /// included; the rows get no line numbers (Simplex_list::lines stays empty).

@@ -16,7 +16,10 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <iosfwd>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -65,5 +68,32 @@ Simplex_list read_ele(std::istream& in, const std::string& name, int dimension, 
 /// plain list or Qhull's. \throws Not_simplices_error for a file of points
 /// (magic 'DWPT', a name ending in .node); Parse_error for anything unreadable.
 Simplex_list read_simplices_file(const std::string& path, int dimension, std::size_t first_index);
+
+class Input_file;
+class Binary_simplex_reader;
+
+/// A simplex file read a block of rows at a time: the binary format straight
+/// from the file (never held whole), the other formats read whole first (as
+/// read_simplices_file) and then handed out.
+class Simplex_file_reader {
+ public:
+  /// Opens `path` ("-" = standard input) and reads the binary header, or the
+  /// whole file of another format. \throws as read_simplices_file.
+  Simplex_file_reader(const std::string& path, int dimension, std::size_t first_index);
+  ~Simplex_file_reader();
+  /// Copies the next whole rows into `indices` (at most indices.size() / (D + 1));
+  /// returns how many, 0 at the end. \throws Parse_error as read_simplices_file.
+  std::size_t read(std::span<std::uint32_t> indices);
+  /// The rows still to come, 2^64 − 1 when unknown (a binary stream of unknown count).
+  std::uint64_t remaining() const;
+  /// The format and the rows' lines, as Simplex_list's (no lines for binary).
+  const Simplex_list& list() const { return list_; }
+
+ private:
+  std::unique_ptr<Input_file> file_;
+  std::unique_ptr<Binary_simplex_reader> binary_;
+  Simplex_list list_;  // the rows of a format read whole; format and lines of any
+  std::size_t k_, next_ = 0;
+};
 
 }  // namespace dewall::io
