@@ -146,7 +146,14 @@ int command_triangulate(int argc, char** argv) {
   if (stream) writer.emplace(output, table.dimension + 1);
   const Simplex_rows_sink write_rows = [&](std::span<const std::uint32_t> rows) { writer->write(rows); };
   try {
-    progress.phase("triangulating " + std::to_string(table.size()) + " points");
+    // On a terminal, the engines' own estimate of the work done (Options::progress).
+    constexpr std::uint64_t steps = 1000;
+    if (progress.enabled())
+      options.progress = [&progress](double fraction) {
+        progress.advance_to(static_cast<std::uint64_t>(fraction * steps));
+        return true;
+      };
+    progress.phase("triangulating " + std::to_string(table.size()) + " points", progress.enabled() ? steps : 0);
     // Only VTK and gmsh files write the points again: otherwise the table's copy
     // goes before the triangulation's peak (10^6 points: 24 MB).
     run = triangulate_any(table, options, stream ? &write_rows : nullptr, io::triangulation_needs_points(output));
@@ -173,8 +180,9 @@ const std::string usage =
     "              [--incremental-engine auto|incremental|cgal] [--stats] [--quiet|-q]\n"
     "      Delaunay triangulation of the points in INPUT ('-' = standard input):\n"
     "      plain text (one point per line, '#' comments), rbox output, TetGen .node,\n"
-    "      the binary .dwpt format, the POINTS of a legacy VTK file, or the vertices\n"
-    "      of a PLY, OFF or OBJ mesh (recognised by their first bytes, or by name).\n"
+    "      the binary .dwpt format, the POINTS of a legacy VTK file, the vertices\n"
+    "      of a PLY, OFF or OBJ mesh, or a PCL .pcd point cloud (recognised by\n"
+    "      their first bytes, or by name).\n"
     "      Writes one simplex per line (zero-based input indices) to OUTPUT\n"
     "      (default: standard output); TetGen .ele when OUTPUT ends in .ele, the\n"
     "      binary simplex format when it ends in .dwsx (for 10^7 points and more),\n"

@@ -6,7 +6,7 @@
 // Readers: plain text / rbox (io::read_points), TetGen .node (io::read_node),
 // binary .dwpt (io::read_binary_points), legacy VTK (io::read_vtk_points and,
 // on the same bytes, io::read_vtk_simplices), and every input through the
-// mesh readers (PLY, OFF, OBJ vertices; gmsh nodes and elements),
+// mesh readers (PLY, OFF, OBJ vertices; PCD points; gmsh nodes and elements),
 // simplex lists: plain or Qhull (io::read_simplices) and TetGen .ele
 // (io::read_ele). The readers added after this harness are compiled in when
 // their headers exist.
@@ -170,6 +170,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_off_points(s, "fuzz.off")); });
   each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_obj_points(s, "fuzz.obj")); });
   each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_msh_points(s, "fuzz.msh")); });
+  each_mesh_reader([](std::istream& s) { check_table(dewall::io::read_pcd_points(s, "fuzz.pcd")); });
   each_mesh_reader([&](std::istream& s) {
     if (dimension > 3) return;
     const auto t = dewall::io::read_msh_simplices(s, "fuzz.msh", dimension);

@@ -46,6 +46,7 @@ class Restored_input_output final : public Simplex_output<D> {
   void expect(std::size_t count) override { output_.expect(count); }
   void put(std::span<const Built_simplex<D>> block) override { output_.put(block); }
   bool frees_input() const override { return true; }
+  Progress_meter* progress() override { return output_.progress(); }
   void input_no_longer_read() override {
     std::vector<kernel::Point_d<D>>().swap(restored_);
 #ifdef __GLIBC__

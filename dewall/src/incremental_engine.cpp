@@ -144,6 +144,7 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
                                    const Distinct_points* given_distinct) {
   const kernel::Fp_environment_guard guard;
   Incremental_delaunay<D> dt;
+  dt.progress = output.progress();
   const auto input_no_longer_read = [&] { output.input_no_longer_read(); };
   if (given_distinct) {
     Distinct_points unused;

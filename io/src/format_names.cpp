@@ -31,7 +31,7 @@ constexpr std::array<Extension, 15> extensions = {{
     {".obj", Named_format::obj, "a Wavefront OBJ mesh"},
     {".stl", Named_format::foreign, "an STL mesh"},
     {".msh", Named_format::gmsh, "a gmsh mesh"},
-    {".pcd", Named_format::foreign, "a PCL point cloud"},
+    {".pcd", Named_format::pcd, "a PCL point cloud"},
     {".vtu", Named_format::foreign, "an XML VTK grid"},
     {".vtp", Named_format::foreign, "an XML VTK polydata"},
     {".svg", Named_format::foreign, "an SVG picture"},
@@ -46,7 +46,8 @@ const Extension* extension_of(std::string_view path) {
 
 /// True for the formats dewall reads but never writes.
 bool read_only(Named_format f) {
-  return f == Named_format::ply || f == Named_format::off || f == Named_format::obj || f == Named_format::foreign;
+  return f == Named_format::ply || f == Named_format::off || f == Named_format::obj || f == Named_format::pcd ||
+         f == Named_format::foreign;
 }
 
 /// The refusal of `path` (whose extension is `e`) for writing `what`; `use` lists the names that work.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -334,6 +335,205 @@ Point_table read_obj_points(std::istream& in, const std::string& name) {
     }
   }
   if (xyz.empty()) throw Parse_error(name + ": no points (no 'v' line in the OBJ file)");
+  return detail::table_from_xyz(std::move(xyz));
+}
+
+// ---------------------------------------------------------------- PCD
+
+namespace {
+
+/// A field of a PCD file: its name, TYPE (I, U or F), SIZE in bytes and COUNT of values.
+struct Pcd_field {
+  std::string name;
+  char type = 'F';
+  std::size_t size = 4;
+  std::size_t count = 1;
+};
+
+/// Integers beyond 2^53 are not all doubles: a coordinate there is refused, not rounded.
+constexpr double largest_exact_integer = 9007199254740992.0;
+
+/// A coordinate of field `f` from its text: a float field's text is the float it
+/// names (then widened exactly, as PLY's), an integer field's must be whole and exact.
+double pcd_text_value(std::string_view token, const Pcd_field& f, const std::string& name, std::size_t line_no) {
+  if (f.type == 'F') return ply_text_value(token, f.size == 4 ? Ply_type::float32 : Ply_type::float64, name, line_no);
+  // Digits are read as the integer they are (a double would round 2^53 + 1 to 2^53 unnoticed).
+  std::int64_t whole = 0;
+  const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), whole);
+  const bool integer = error == std::errc() && end == token.data() + token.size();
+  const double v = integer ? static_cast<double>(whole) : ply_text_value(token, Ply_type::int32, name, line_no);
+  if (integer ? (whole > (std::int64_t{1} << 53) || whole < -(std::int64_t{1} << 53)) : std::fabs(v) > largest_exact_integer)
+    throw Parse_error(where(name, line_no) + quoted(token) + " is not exactly a double (beyond 2^53)");
+  if (f.type == 'U' && v < 0) throw Parse_error(where(name, line_no) + quoted(token) + " is negative (the field's type is unsigned)");
+  return v;
+}
+
+/// A coordinate of field `f` from its little-endian bytes (PCL writes the machine's order, little endian on
+/// every platform it runs on).
+double pcd_binary_value(const unsigned char* b, const Pcd_field& f, const std::string& name, std::size_t point) {
+  unsigned char bytes[8];
+  std::memcpy(bytes, b, f.size);
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bytes, bytes + f.size);
+  const auto load = [&](auto v) {
+    std::memcpy(&v, bytes, sizeof v);
+    return v;
+  };
+  if (f.type == 'F') return f.size == 4 ? static_cast<double>(load(float{})) : load(double{});
+  const auto exact = [&](auto v) {
+    if (static_cast<double>(v) > largest_exact_integer || static_cast<double>(v) < -largest_exact_integer)
+      throw Parse_error(name + ": point " + std::to_string(point) + ": field " + f.name + " = " + std::to_string(v) +
+                        " is not exactly a double (beyond 2^53)");
+    return static_cast<double>(v);
+  };
+  switch (f.size) {
+    case 1: return f.type == 'I' ? exact(load(std::int8_t{})) : exact(load(std::uint8_t{}));
+    case 2: return f.type == 'I' ? exact(load(std::int16_t{})) : exact(load(std::uint16_t{}));
+    case 4: return f.type == 'I' ? exact(load(std::int32_t{})) : exact(load(std::uint32_t{}));
+    default: return f.type == 'I' ? exact(load(std::int64_t{})) : exact(load(std::uint64_t{}));
+  }
+}
+
+}  // namespace
+
+bool is_pcd_header(std::string_view head) { return head.substr(0, 6) == "# .PCD" || first_word(head) == "VERSION"; }
+
+Point_table read_pcd_points(std::istream& in, const std::string& name) {
+  detail::Line_source source(in);
+  std::string line;
+  std::vector<Pcd_field> fields;
+  std::optional<std::size_t> width, height, points;
+  std::string_view data;
+  std::string data_line;
+  while (data.empty()) {
+    if (!source.next(line)) throw Parse_error(name + ": truncated PCD header (no DATA line)");
+    const std::size_t n = source.number();
+    const auto t = tokens_of(line);
+    if (t.empty()) continue;
+    const std::string_view key = t[0];
+    const std::size_t values = t.size() - 1;
+    const auto per_field = [&](const char* what) {
+      if (fields.empty()) throw Parse_error(where(name, n) + what + " before FIELDS");
+      if (values != fields.size())
+        throw Parse_error(where(name, n) + what + " has " + std::to_string(values) + " values for " +
+                          std::to_string(fields.size()) + " fields");
+    };
+    if (key == "VERSION") {
+      continue;
+    } else if (key == "FIELDS" || key == "COLUMNS") {  // (COLUMNS: PCD 0.5's name)
+      if (values == 0) throw Parse_error(where(name, n) + "FIELDS names no field");
+      fields.assign(values, {});
+      for (std::size_t i = 0; i < values; ++i) fields[i].name = std::string(t[i + 1]);
+    } else if (key == "SIZE") {
+      per_field("SIZE");
+      for (std::size_t i = 0; i < values; ++i) {
+        const std::size_t size = count_of(t[i + 1], name, n, "field size");
+        if (size != 1 && size != 2 && size != 4 && size != 8)
+          throw Parse_error(where(name, n) + "field size " + quoted(t[i + 1]) + " is not 1, 2, 4 or 8");
+        fields[i].size = size;
+      }
+    } else if (key == "TYPE") {
+      per_field("TYPE");
+      for (std::size_t i = 0; i < values; ++i) {
+        if (t[i + 1] != "F" && t[i + 1] != "I" && t[i + 1] != "U")
+          throw Parse_error(where(name, n) + "field type " + quoted(t[i + 1]) + " is not F, I or U");
+        fields[i].type = t[i + 1][0];
+      }
+    } else if (key == "COUNT") {
+      per_field("COUNT");
+      for (std::size_t i = 0; i < values; ++i) fields[i].count = count_of(t[i + 1], name, n, "field count");
+    } else if (key == "WIDTH" || key == "HEIGHT" || key == "POINTS") {
+      if (values != 1) throw Parse_error(where(name, n) + "expected '" + std::string(key) + " <count>'");
+      (key == "WIDTH" ? width : key == "HEIGHT" ? height : points) = count_of(t[1], name, n, "point count");
+    } else if (key == "VIEWPOINT") {
+      continue;  // the sensor's pose: not the points'
+    } else if (key == "DATA") {
+      if (values != 1) throw Parse_error(where(name, n) + "expected 'DATA ascii', 'DATA binary' or 'DATA binary_compressed'");
+      if (t[1] == "binary_compressed")
+        throw Parse_error(where(name, n) + "compressed PCD data (DATA binary_compressed) is not read: convert the file "
+                          "to DATA binary or ascii first (PCL's pcl_convert_pcd_ascii_binary)");
+      if (t[1] != "ascii" && t[1] != "binary")
+        throw Parse_error(where(name, n) + "unknown PCD data encoding " + quoted(t[1]) + " (ascii or binary)");
+      data_line = std::string(t[1]);
+      data = data_line;
+    } else {
+      throw Parse_error(where(name, n) + "unknown PCD header line " + quoted(line));
+    }
+  }
+  const std::size_t data_line_no = source.number();
+  if (fields.empty()) throw Parse_error(name + ": the PCD header has no FIELDS line");
+  for (const Pcd_field& f : fields)
+    if (f.type == 'F' && f.size != 4 && f.size != 8)
+      throw Parse_error(name + ": field " + quoted(f.name) + " is of type F and size " + std::to_string(f.size) +
+                        " (a float is 4 or 8 bytes)");
+  // Which field is which coordinate (z may be absent: a 2D set).
+  std::array<int, 3> axis = {-1, -1, -1};
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    for (std::size_t a = 0; a < 3; ++a)
+      if (fields[i].name == std::string(1, static_cast<char>('x' + a))) {
+        if (fields[i].count != 1)
+          throw Parse_error(name + ": field " + fields[i].name + " has COUNT " + std::to_string(fields[i].count) +
+                            " (a coordinate is one value)");
+        axis[a] = static_cast<int>(i);
+      }
+  if (axis[0] < 0 || axis[1] < 0) throw Parse_error(name + ": the PCD fields have no x and y");
+  if (width && height && points && *points != *width * *height)
+    throw Parse_error(name + ": the PCD header announces POINTS " + std::to_string(*points) + " but WIDTH x HEIGHT = " +
+                      std::to_string(*width) + " x " + std::to_string(*height));
+  if (!points && !(width && height)) throw Parse_error(name + ": the PCD header gives neither POINTS nor WIDTH and HEIGHT");
+  const std::size_t count = points ? *points : *width * *height;
+  if (count == 0) throw Parse_error(where(name, data_line_no) + "no points (the PCD header announces 0)");
+
+  std::vector<double> xyz;
+  xyz.reserve(3 * std::min<std::size_t>(count, std::size_t{1} << 16));  // not trusting the count
+  const auto truncated = [&](std::size_t read) {
+    return Parse_error(name + ": truncated: the PCD header announces " + std::to_string(count) + " points, the file has " +
+                       std::to_string(read));
+  };
+  if (data == "ascii") {
+    std::size_t values_per_point = 0;
+    for (const Pcd_field& f : fields) values_per_point += f.count;
+    for (std::size_t r = 0; r < count; ++r) {
+      std::vector<std::string_view> t;
+      do {
+        if (!source.next(line)) throw truncated(r);
+        t = tokens_of(line);
+      } while (t.empty());
+      const std::size_t n = source.number();
+      if (t.size() != values_per_point)
+        throw Parse_error(where(name, n) + "expected " + std::to_string(values_per_point) + " values (the FIELDS' COUNTs), found " +
+                          std::to_string(t.size()));
+      std::array<double, 3> p = {0, 0, 0};
+      std::size_t at = 0;
+      for (std::size_t i = 0; i < fields.size(); ++i)
+        for (std::size_t k = 0; k < fields[i].count; ++k, ++at) {
+          const auto a = std::find(axis.begin(), axis.end(), static_cast<int>(i));
+          if (a != axis.end()) p[static_cast<std::size_t>(a - axis.begin())] = pcd_text_value(t[at], fields[i], name, n);
+          else detail::parse_double(t[at], name, n);  // another field's value: a number too
+        }
+      xyz.insert(xyz.end(), p.begin(), p.end());
+    }
+    source.expect_no_more_rows(name, std::to_string(count) + " points");
+  } else {
+    std::size_t row_size = 0;
+    std::vector<std::size_t> offset(fields.size());
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+      offset[i] = row_size;
+      if (fields[i].count > (std::size_t{1} << 20)) throw Parse_error(name + ": field " + quoted(fields[i].name) + " has COUNT " + std::to_string(fields[i].count) + " (too large)");
+      row_size += fields[i].size * fields[i].count;
+    }
+    std::vector<unsigned char> row(row_size);
+    for (std::size_t r = 0; r < count; ++r) {
+      in.read(reinterpret_cast<char*>(row.data()), static_cast<std::streamsize>(row_size));
+      if (static_cast<std::size_t>(in.gcount()) != row_size) throw truncated(r);
+      for (std::size_t a = 0; a < 3; ++a) {
+        const int i = axis[a];
+        xyz.push_back(i < 0 ? 0.0 : pcd_binary_value(row.data() + offset[static_cast<std::size_t>(i)], fields[static_cast<std::size_t>(i)], name, r));
+      }
+    }
+    if (in.peek() != std::char_traits<char>::eof())
+      throw Parse_error(name + ": more data than the PCD header announces (" + std::to_string(count) + " points of " +
+                        std::to_string(row_size) + " bytes)");
+  }
   return detail::table_from_xyz(std::move(xyz));
 }
 

@@ -225,9 +225,11 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
   const bool off = !vtk && !ply && (is_off_header(head) || named == Named_format::off);
   const bool obj = !vtk && !ply && !off && (named == Named_format::obj || (!node && is_obj_header(head)));
   const bool msh = !vtk && (is_msh_header(head) || named == Named_format::gmsh);
+  const bool pcd = !vtk && !msh && !ply && (is_pcd_header(head) || named == Named_format::pcd);
   if (progress) progress->phase("reading " + name, file.size());
   const Point_table t = vtk    ? read_vtk_points(file.stream(), name)
                         : msh  ? read_msh_points(file.stream(), name)
+                        : pcd  ? read_pcd_points(file.stream(), name)
                         : ply  ? read_ply_points(file.stream(), name)
                         : off  ? read_off_points(file.stream(), name)
                         : obj  ? read_obj_points(file.stream(), name)

@@ -18,6 +18,7 @@ from ._errors import InvalidInput, InvalidOption, InvalidShape, translated
 from ._boundary import extreme_facets_3d, extreme_hull_edges_2d, quickhull_facets
 from ._furthest_site import furthest_site_simplices
 from ._high_dimension import DimensionFreeTriangulation
+from ._progress import progress_callback
 
 # scipy's default tolerance of find_simplex (barycentric), and its limit on the
 # reciprocal condition number under which a barycentric transform is NaN.
@@ -99,14 +100,14 @@ def _refuse_masked(values, what):
 _MAX_LIBRARY_DIMENSION = 6
 
 
-def _triangulate(points, engine, threads):
+def _triangulate(points, engine, threads, progress=None):
     if points.shape[1] > _MAX_LIBRARY_DIMENSION:
         if str(engine) not in ("auto", "cgal"):
             raise ValueError(f"engine {engine!r}: above {_MAX_LIBRARY_DIMENSION} dimensions the triangulation is "
                              "CGAL's dD Delaunay_triangulation (engine 'auto' or 'cgal')")
-        return DimensionFreeTriangulation.triangulate(points)
+        return DimensionFreeTriangulation.triangulate(points, progress)
     try:
-        return _dewall.triangulate(points, str(engine), threads)
+        return _dewall.triangulate(points, str(engine), threads, progress)
     except InvalidInput as error:
         raise translated(error) from None
 
@@ -121,7 +122,8 @@ def _from_simplices(points, simplices):
 class Delaunay:
     """The Delaunay triangulation of points in E^d (d >= 2), exact, with scipy.spatial.Delaunay's interface.
 
-    Delaunay(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+    Delaunay(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None,
+             progress=None)
 
     points: array of shape (n, d). A C-contiguous float64 array is used in
         place, not copied (so do not change it while this object is in use);
@@ -157,8 +159,17 @@ class Delaunay:
     threads (keyword only): the most threads to use, an int >= 1 (None: all
         cores); capped silently at the CPUs the process may run on
         (os.sched_getaffinity). The result does not depend on it.
+    progress (keyword only): True draws a bar on sys.stderr while the
+        triangulation is built; a callable is called as progress(fraction),
+        fraction a float in [0, 1] (at most every few hundredths of a second,
+        in the calling thread, and with 1.0 at the end); None or False (the
+        default): nothing. An exception the callable raises stops the work
+        and is raised here (dewall._progress).
 
-    The work runs without the GIL. Degenerate input (grids, cospherical
+    The work runs without the GIL, and Ctrl-C stops it within a fraction of
+    a second (KeyboardInterrupt; what was built is freed), as it stops the
+    other long calls (neighbors, find_simplex, ConvexHull, Voronoi, the
+    interpolators). Degenerate input (grids, cospherical
     points) is resolved by CGAL's symbolic perturbation, so the simplices are
     CGAL's; duplicate points are one vertex, the first occurrence (see
     `duplicates`, and `coplanar` in scipy's layout).
@@ -183,8 +194,10 @@ class Delaunay:
              "convex_hull", "duplicates", "coplanar", "_lift", "_hull_simplices")
 
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
-                 threads=None):
+                 threads=None, progress=None):
         _refuse_masked(points, "Input points")
+        progress_callback(progress)  # (checked now: a bar is made for each build)
+        self._progress = progress
         self.furthest_site = bool(furthest_site)
         self._qhull_options = _check_qhull_options(qhull_options)
         self._engine = str(engine)
@@ -207,7 +220,8 @@ class Delaunay:
                                     build_seconds=time.perf_counter() - start)
             self._set_bounds()
             return
-        self._triangulation = _triangulate(points, self._engine, self._threads)
+        self._triangulation = _triangulate(points, self._engine, self._threads,
+                                           progress_callback(self._progress, "dewall.Delaunay"))
         if self.furthest_site:
             self._statistics = self._triangulation.statistics
             simplices, neighbors = self._triangulation.simplices(), self._triangulation.neighbors()
@@ -536,6 +550,7 @@ class Delaunay:
         self._engine, self._threads = state["engine"], state["threads"]
         self._incremental, self._closed = state["incremental"], state["closed"]
         self._qhull_options, self._statistics = state["qhull_options"], state["statistics"]
+        self._progress = None
         self.points = state["points"]
         self._triangulation = _from_simplices(self.points, state["simplices"])
         self._set_bounds()

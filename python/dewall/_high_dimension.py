@@ -37,11 +37,11 @@ class DimensionFreeTriangulation:
             "engine": "given simplices", "input_points": points.shape[0], "simplices": len(self._simplices)}
 
     @classmethod
-    def triangulate(cls, points):
+    def triangulate(cls, points, progress=None):
         """CGAL's dD Delaunay triangulation of `points` (float64, C-contiguous, (n, d))."""
         start = time.perf_counter()
         try:
-            simplices, neighbors = _dewall.triangulate_dd(points)
+            simplices, neighbors = _dewall.triangulate_dd(points, progress)
         except InvalidInput as error:
             raise translated(error) from None
         seconds = time.perf_counter() - start

@@ -17,6 +17,7 @@ from . import _dewall
 from ._arrays import as_coordinates
 from ._errors import InvalidOption
 from ._boundary import extreme_hull_edges_2d, extreme_ring_2d, merge_flat_faces_3d, ridge_pairs
+from ._progress import progress_callback
 from ._delaunay import (Delaunay, _check_qhull_options, _check_threads, _determinants, _option_in_effect,
                         _refuse_masked, _with_added_points)
 
@@ -30,8 +31,9 @@ class _FromDelaunay:
     """Construction, incremental mode and bounds shared by ConvexHull and Voronoi."""
 
     def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None,
-                 furthest_site=False):
-        self._tri = Delaunay(points, furthest_site, incremental, qhull_options, engine=engine, threads=threads)
+                 furthest_site=False, progress=None):
+        self._tri = Delaunay(points, furthest_site, incremental, qhull_options, engine=engine, threads=threads,
+                             progress=progress)
         self._update()
 
     def _update(self):
@@ -71,7 +73,7 @@ def _good_option(options):
 class ConvexHull:
     """The convex hull of points in E^d (d >= 2), with scipy.spatial.ConvexHull's interface.
 
-    ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+    ConvexHull(points, incremental=False, qhull_options=None, *, engine="auto", threads=None, progress=None)
 
     Attributes (as scipy's): points, vertices (2-D: counterclockwise), simplices (the facets,
     triangulated), neighbors, equations (outward unit normal, offset; normal . x + offset <= 0
@@ -94,10 +96,16 @@ class ConvexHull:
     `good[i]` true when point n sees facet i strictly (exact orientation; a point in the
     facet's hyperplane does not see it); "QG-n": true for the others. Without it `good` is None.
     The facets' order is not Qhull's, so compare `good` together with `simplices`.
+
+    progress (keyword only): as dewall.Delaunay's (True: a bar on sys.stderr; a callable of the
+    fraction done). Ctrl-C stops the work within a fraction of a second (KeyboardInterrupt).
     """
 
-    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None):
+    def __init__(self, points, incremental=False, qhull_options=None, *, engine="auto", threads=None,
+                 progress=None):
         _refuse_masked(points, "Input points")
+        progress_callback(progress)  # (checked now: a bar is made for each build)
+        self._progress = progress
         qhull_options, self._good_point = _good_option(qhull_options)
         self._qhull_options = _check_qhull_options(qhull_options)
         self._engine, self._threads = str(engine), _check_threads(threads)
@@ -144,10 +152,10 @@ class ConvexHull:
         d = self.ndim
         if d < 2:  # the Delaunay code's message
             Delaunay(points, engine=self._engine, threads=self._threads)
-        hull = _dewall.convex_hull(points)
+        hull = _dewall.convex_hull(points, progress_callback(self._progress, "dewall.ConvexHull"))
         if hull is None or (hull[3] and d > 3):
             self._from_delaunay(Delaunay(points, False, False, self._qhull_options, engine=self._engine,
-                                         threads=self._threads))
+                                         threads=self._threads, progress=self._progress))
         else:
             facets, neighbors, below, flat, normals = hull
             if d == 2:
@@ -241,7 +249,8 @@ class ConvexHull:
 class Voronoi(_FromDelaunay):
     """The Voronoi diagram of points in E^d (d >= 2), with scipy.spatial.Voronoi's interface.
 
-    Voronoi(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None)
+    Voronoi(points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto", threads=None,
+            progress=None)
 
     Attributes (as scipy's): points, vertices, ridge_points, ridge_vertices, regions,
     point_region, ridge_dict, furthest_site, min_bound, max_bound, ndim, npoints.
@@ -259,12 +268,14 @@ class Voronoi(_FromDelaunay):
     first occurrence's region. furthest_site=True:
     the furthest-site diagram, from Delaunay(furthest_site=True) (its rules on ties); points
     inside the hull get an empty region, and there is no point at infinity (as Qhull's).
+    progress (keyword only): as dewall.Delaunay's, for the triangulation (most of the work).
+    Ctrl-C stops the work within a fraction of a second (KeyboardInterrupt).
     """
 
     def __init__(self, points, furthest_site=False, incremental=False, qhull_options=None, *, engine="auto",
-                 threads=None):
+                 threads=None, progress=None):
         super().__init__(points, incremental, qhull_options, engine=engine, threads=threads,
-                         furthest_site=furthest_site)
+                         furthest_site=furthest_site, progress=progress)
 
     def _compute(self):
         tri = self._tri

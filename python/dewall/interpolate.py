@@ -68,7 +68,7 @@ def _repr(self):
 class _Interpolator:
     """What the interpolators share: the triangulation (built or given), values, rescaling, calling."""
 
-    def __init__(self, points, values, fill_value=np.nan, rescale=False):
+    def __init__(self, points, values, fill_value=np.nan, rescale=False, *, progress=None):
         if isinstance(points, Delaunay):
             if rescale:
                 raise ValueError("Rescaling is not supported when passing a Delaunay triangulation as ``points``.")
@@ -96,7 +96,7 @@ class _Interpolator:
         self.values = np.ascontiguousarray(values.reshape(values.shape[0], -1), dtype=dtype)
         self.fill_value = fill_value
         if self.tri is None:
-            self.tri = Delaunay(self.points)
+            self.tri = Delaunay(self.points, progress=progress)
 
     __repr__ = _repr
 
@@ -138,11 +138,12 @@ def __getattr__(name):
 class LinearNDInterpolator(_Interpolator):
     """Piecewise linear interpolation on the exact Delaunay triangulation, scipy.interpolate's interface.
 
-    LinearNDInterpolator(points, values, fill_value=np.nan, rescale=False)
+    LinearNDInterpolator(points, values, fill_value=np.nan, rescale=False, *, progress=None)
 
     points: (npoints, ndim) coordinates, or a dewall.Delaunay (then rescale must be False).
     values: (npoints, ...) real or complex values. fill_value: for queries outside the hull.
     rescale: as scipy, triangulate the points shifted to their mean and scaled to unit extent.
+    progress (keyword only, dewall's): as dewall.Delaunay's, for the triangulation.
     Calling: interp(xi) with xi of shape (..., ndim), or interp(x, y, …) broadcast together;
     the result has shape xi.shape[:-1] + values.shape[1:].
 
@@ -221,12 +222,14 @@ def as_scipy_delaunay(tri):
     return view
 
 
-def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxiter=400, rescale=False):
+def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxiter=400, rescale=False, *,
+                               progress=None):
     """scipy.interpolate.CloughTocher2DInterpolator on dewall's exact triangulation (2-D only).
 
     Same signature and result type as scipy's (it is scipy's object): the triangulation is
     dewall's, handed to scipy as a scipy.spatial.Delaunay; gradients, patches and the
     location of queries (scipy's walk, with its tolerance) are scipy's code. Needs scipy.
+    progress (keyword only, dewall's): as dewall.Delaunay's, for the triangulation.
     """
     from scipy.interpolate import CloughTocher2DInterpolator  # type: ignore[import]
 
@@ -240,13 +243,13 @@ def CloughTocher2DInterpolator(points, values, fill_value=np.nan, tol=1e-6, maxi
         points = np.ascontiguousarray(_coordinates(points, None), dtype=np.float64)
         if rescale:  # scipy rescales before triangulating: triangulate the same rescaled points
             offset, scale = _rescaling(points)
-            tri = Delaunay((points - offset) / scale)
+            tri = Delaunay((points - offset) / scale, progress=progress)
             interpolator = ScipyCloughTocher(as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol,
                                              maxiter=maxiter)
             interpolator.offset, interpolator.scale = offset, scale
             interpolator.rescale = True
             return interpolator
-        tri = Delaunay(points)
+        tri = Delaunay(points, progress=progress)
     if tri.ndim != 2:
         raise ValueError(f"CloughTocher2DInterpolator is 2-D only, not {tri.ndim}-D")
     return ScipyCloughTocher(as_scipy_delaunay(tri), values, fill_value=fill_value, tol=tol, maxiter=maxiter)

@@ -31,6 +31,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <utility>
@@ -68,7 +69,8 @@ using dewall::kernel::Point_d;
 template <int D>
 class Quickhull {
  public:
-  explicit Quickhull(std::span<const Point_d<D>> p) : p_(p) {}
+  /// `progress`: told a rough fraction done every few hundred facets; what it throws stops the work.
+  Quickhull(std::span<const Point_d<D>> p, const std::function<void(double)>& progress) : p_(p), progress_(progress) {}
 
   std::optional<Convex_hull<D>> run() {
     for (const auto& q : p_)
@@ -80,6 +82,9 @@ class Quickhull {
     for (std::size_t next = 0; next < pending_.size(); ++next) {
       const std::int32_t f = pending_[next];
       if (facets_[f].alive && facets_[f].outside != none) add_point(f);
+      // (the queue grows as it goes: its share done, never back)
+      reported_ = std::max(reported_, static_cast<double>(next) / static_cast<double>(pending_.size()));
+      if (next % 16 == 15) progress_(reported_);
     }
     return collect();
   }
@@ -335,6 +340,7 @@ class Quickhull {
       for (std::uint32_t x = facets_[g].outside, after; x != none; x = after) {
         after = next_[x];  // before assign() chains x elsewhere
         if (x == apex) continue;
+        if (++tested_ % 16384 == 0) progress_(reported_);  // the first steps test most points, each
         for (std::size_t begin = 0; begin < m; begin += block) {
           const std::size_t end = std::min(m, begin + block);
           std::array<double, block> h{};
@@ -425,6 +431,9 @@ class Quickhull {
   }
 
   std::span<const Point_d<D>> p_;
+  const std::function<void(double)>& progress_;
+  double reported_ = 0;     // the last fraction told
+  std::size_t tested_ = 0;  // outside points tested against new facets, all steps
   std::array<std::uint32_t, D + 1> simplex_{};
   std::vector<Facet> facets_;
   struct Ridge {
@@ -448,9 +457,12 @@ class Quickhull {
 /// point is flat (points that do not span E^D, or nearly so): the caller then takes the
 /// Delaunay triangulation's boundary, which raises the right error or copes.
 /// Cost: expected O(n log h) orientation tests on random points (h hull vertices).
+/// `progress` is told a rough fraction done every few hundred facets; what it throws stops the
+/// work (and is passed on).
 template <int D>
-std::optional<Convex_hull<D>> convex_hull(std::span<const dewall::kernel::Point_d<D>> points) {
-  return detail::Quickhull<D>(points).run();
+std::optional<Convex_hull<D>> convex_hull(std::span<const dewall::kernel::Point_d<D>> points,
+                                          const std::function<void(double)>& progress) {
+  return detail::Quickhull<D>(points, progress).run();
 }
 
 }  // namespace dewall_python

@@ -40,10 +40,18 @@
 #include "convex_hull.hpp"
 #include "high_dimension.hpp"
 #include "voronoi.hpp"
+#include "watched.hpp"
 
 namespace py = pybind11;
 
 namespace {
+
+using dewall_python::Watch;
+using dewall_python::watched;
+
+/// Queries (locate) and simplices (the module's own loops) per block between
+/// two polls of a watched call: a few milliseconds of work.
+constexpr std::size_t poll_block = std::size_t{1} << 14;
 
 using dewall::kernel::Point_d;
 template <int D>
@@ -188,13 +196,14 @@ class Triangulation {
       compute_neighbors(c);
       py::array_t<std::int32_t> out(q.shape(0));
       std::span<std::int32_t> result(out.mutable_data(), static_cast<std::size_t>(q.shape(0)));
-      {
-        py::gil_scoped_release release;  // taken back before `out` is copied below
-        dewall::locate_all<Kernel<D>>({}, as_points<D>(points_),
-                                      std::span<const dewall::Simplex<D>>(c.simplices),
-                                      std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), as_points<D>(q),
-                                      result);
-      }
+      const auto xi = as_points<D>(q);
+      watched(xi.size(), py::none(), [&](Watch& watch) {
+        watch.blocks(xi.size(), poll_block, [&](std::size_t first, std::size_t last) {
+          dewall::locate_all<Kernel<D>>({}, as_points<D>(points_), std::span<const dewall::Simplex<D>>(c.simplices),
+                                        std::span<const std::array<std::int32_t, D + 1>>(c.neighbors),
+                                        xi.subspan(first, last - first), result.subspan(first, last - first));
+        });
+      });
       return py::array(out);
     }, cells_);
   }
@@ -218,12 +227,15 @@ class Triangulation {
         double* w = weights.mutable_data();
         const auto* x = static_cast<const double*>(points_.data());
         const auto* xi = static_cast<const double*>(q.data());
-        {
-          py::gil_scoped_release release;
-          dewall::locate_all<Kernel<D>>({}, as_points<D>(points_), std::span<const dewall::Simplex<D>>(c.simplices),
-                                        std::span<const std::array<std::int32_t, D + 1>>(c.neighbors),
-                                        as_points<D>(q), result);
+        watched(count, py::none(), [&](Watch& watch) {
+          watch.blocks(count, poll_block, [&](std::size_t first, std::size_t last) {
+            dewall::locate_all<Kernel<D>>({}, as_points<D>(points_), std::span<const dewall::Simplex<D>>(c.simplices),
+                                          std::span<const std::array<std::int32_t, D + 1>>(c.neighbors),
+                                          as_points<D>(q).subspan(first, last - first),
+                                          result.subspan(first, last - first));
+          });
           for (std::size_t i = 0; i < count; ++i, w += D + 1, xi += D) {
+            if (i % poll_block == 0) watch.poll();
             if (result[i] < 0) {
               for (int j = 0; j <= D; ++j) w[j] = NAN;
               continue;
@@ -239,7 +251,7 @@ class Triangulation {
             }
             w[D] = 1 - total;
           }
-        }
+        });
         return py::make_tuple(found, weights);
       }
     }, cells_);
@@ -254,11 +266,11 @@ class Triangulation {
       constexpr int D = std::decay_t<decltype(c)>::dimension;
       compute_neighbors(c);
       std::vector<std::array<std::int32_t, 2>> pairs;
-      {
-        py::gil_scoped_release release;
+      watched(c.simplices.size(), py::none(), [&](Watch& watch) {
         const auto points = as_points<D>(points_);
         const auto sphere = Kernel<D>{}.side_of_oriented_sphere_unperturbed_d_object();
         for (std::size_t i = 0; i < c.simplices.size(); ++i) {
+          if (i % poll_block == 0) watch.report(static_cast<double>(i) / static_cast<double>(c.simplices.size()));
           for (int j = 0; j <= D; ++j) {
             const std::int32_t n = c.neighbors[i][static_cast<std::size_t>(j)];
             if (n < 0 || static_cast<std::size_t>(n) < i) continue;
@@ -273,7 +285,7 @@ class Triangulation {
             if (sphere(s) == dewall::kernel::ON_ORIENTED_BOUNDARY) pairs.push_back({static_cast<std::int32_t>(i), n});
           }
         }
-      }
+      });
       const auto rows = static_cast<py::ssize_t>(pairs.size());
       return adopt<std::int32_t>(std::move(pairs), {rows, 2});
     }, cells_);
@@ -294,13 +306,12 @@ class Triangulation {
       for (const std::int32_t g : groups)
         if (g < 0) throw py::value_error("group: negative index");
       compute_neighbors(c);
-      dewall_python::Voronoi_topology t;
-      {
-        py::gil_scoped_release release;
-        t = dewall_python::voronoi_topology<D>(static_cast<std::size_t>(points_.shape(0)),
-                                               std::span<const std::array<std::uint32_t, D + 1>>(c.simplices),
-                                               std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), groups);
-      }
+      dewall_python::Voronoi_topology t = watched(c.simplices.size(), py::none(), [&](Watch& watch) {
+        return dewall_python::voronoi_topology<D>(static_cast<std::size_t>(points_.shape(0)),
+                                                  std::span<const std::array<std::uint32_t, D + 1>>(c.simplices),
+                                                  std::span<const std::array<std::int32_t, D + 1>>(c.neighbors), groups,
+                                                  [&] { watch.poll(); });
+      });
       const auto rows = static_cast<py::ssize_t>(t.ridge_points.size());
       py::list regions = nested_lists(t.region_start, t.region_vertices);
       py::list ridges = nested_lists(t.ridge_start, t.ridge_vertices);
@@ -327,17 +338,25 @@ class Triangulation {
  private:
   template <int D>
   void compute_neighbors(Cells<D>& c) {
-    // Two Python threads may ask at once. The GIL goes first: waiting for the
-    // mutex while holding it would deadlock with the thread that computes.
-    py::gil_scoped_release release;
-    const std::lock_guard lock(mutex_);
-    if (c.have_neighbors) return;
     if (c.simplices.size() > max_index) throw py::value_error("more than 2^31 - 1 simplices: neighbors need int64");
-    c.neighbors.resize(c.simplices.size());
-    dewall::certify::neighbors<D, std::int32_t>(static_cast<std::size_t>(points_.shape(0)),
-                                                std::span<const dewall::Simplex<D>>(c.simplices),
-                                                std::span<std::array<std::int32_t, D + 1>>(c.neighbors));
-    c.have_neighbors = true;
+    // Two Python threads may ask at once. The GIL goes first (watched
+    // releases it): waiting for the mutex while holding it would deadlock
+    // with the thread that computes.
+    watched(c.simplices.size(), py::none(), [&](Watch& watch) {
+      const std::lock_guard lock(mutex_);
+      if (c.have_neighbors) return;
+      try {
+        c.neighbors.resize(c.simplices.size());
+        dewall::certify::neighbors<D, std::int32_t>(static_cast<std::size_t>(points_.shape(0)),
+                                                    std::span<const dewall::Simplex<D>>(c.simplices),
+                                                    std::span<std::array<std::int32_t, D + 1>>(c.neighbors),
+                                                    [&](double fraction) { watch.report(fraction); });
+      } catch (...) {
+        std::vector<std::array<std::int32_t, D + 1>>().swap(c.neighbors);  // stopped: what was built goes
+        throw;
+      }
+      c.have_neighbors = true;
+    });
   }
 
   py::array points_;
@@ -348,7 +367,7 @@ class Triangulation {
 };
 
 std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::string& engine,
-                                           std::optional<int> threads) {
+                                           std::optional<int> threads, const py::object& progress) {
   py::array points = checked(points_in, float64, -1, "points");
   const auto e = dewall::parse_engine(engine);
   if (!e) throw py::value_error("unknown engine '" + engine + "' (" + dewall::engine_choices + ")");
@@ -365,12 +384,13 @@ std::unique_ptr<Triangulation> triangulate(py::handle points_in, const std::stri
     const auto view = as_points<D>(points);
     dewall::Triangulation<D> t;
     double seconds = 0;
-    {
-      py::gil_scoped_release release;  // other Python threads run meanwhile
+    watched(view.size(), progress, [&](Watch& watch) {  // other Python threads run meanwhile
       const auto start = std::chrono::steady_clock::now();
-      t = dewall::triangulate<Kernel<D>>(view, options);
+      dewall::Options watched_options = options;
+      watched_options.progress = watch.library_hook();
+      t = dewall::triangulate<Kernel<D>>(view, watched_options);
       seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    }
+    });
     Cells<D> cells;
     cells.simplices = std::move(t.simplices);
     return std::make_unique<Triangulation>(points, std::move(cells), t.statistics, seconds);
@@ -471,7 +491,12 @@ py::array barycentric_transforms(py::handle points_in, py::handle simplices_in, 
   py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(d + 1), static_cast<py::ssize_t>(d)});
   double* o = out.mutable_data();
   const auto width = static_cast<std::size_t>(d);
-  for (std::size_t s = 0; s < count; ++s, index += d + 1, o += (d + 1) * d) transform_row(x, index, width, rcond_limit, o);
+  const auto rows = static_cast<std::size_t>(d + 1);
+  watched(count, py::none(), [&](Watch& watch) {
+    watch.blocks(count, poll_block, [&](std::size_t first, std::size_t last) {
+      for (std::size_t s = first; s < last; ++s) transform_row(x, index + s * rows, width, rcond_limit, o + s * rows * width);
+    });
+  });
   return out;
 }
 
@@ -506,11 +531,14 @@ py::array circumcentres(py::handle points_in, py::handle simplices_in) {
   double* o = out.mutable_data();
   dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
     constexpr int D = dim();
-    py::gil_scoped_release release;
-    dewall_python::circumcentres<D>(static_cast<const double*>(points.data()),
-                                    std::span<const std::array<std::uint32_t, D + 1>>(
-                                        reinterpret_cast<const std::array<std::uint32_t, D + 1>*>(index), count),
-                                    o);
+    const std::span<const std::array<std::uint32_t, D + 1>> rows(
+        reinterpret_cast<const std::array<std::uint32_t, D + 1>*>(index), count);
+    watched(count, py::none(), [&](Watch& watch) {
+      watch.blocks(count, poll_block, [&](std::size_t first, std::size_t last) {
+        dewall_python::circumcentres<D>(static_cast<const double*>(points.data()), rows.subspan(first, last - first),
+                                        o + first * D);
+      });
+    });
   });
   return out;
 }
@@ -540,18 +568,22 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind, bo
   std::int8_t* sign = out.mutable_data();
   if (cgal_dd || d > dewall::kernel::max_dimension) {
     if (d < 2) throw py::value_error("points of 2 dimensions or more");
-    py::gil_scoped_release release;
-    dewall_python::high_dimension::predicate_signs(static_cast<const double*>(points.data()),
-                                                   static_cast<std::size_t>(n), static_cast<int>(d), index, count,
-                                                   kind, sign);
+    watched(count, py::none(), [&](Watch& watch) {
+      watch.blocks(count, poll_block, [&](std::size_t first, std::size_t last) {
+        dewall_python::high_dimension::predicate_signs(static_cast<const double*>(points.data()),
+                                                       static_cast<std::size_t>(n), static_cast<int>(d),
+                                                       index + first * width, last - first, kind, sign + first);
+      });
+    });
     return out;
   }
   dewall::kernel::with_dimension(static_cast<int>(d), [&](auto dim) {
     constexpr int D = dim();
     const auto p = as_points<D>(points);
     const Kernel<D> k;
-    py::gil_scoped_release release;
+    watched(count, py::none(), [&](Watch& watch) {
     for (std::size_t r = 0; r < count; ++r) {
+      if (r % poll_block == 0) watch.poll();
       const std::uint32_t* row = index + r * width;
       if (sphere) {
         std::array<const Point_d<D>*, D + 2> s;
@@ -564,23 +596,23 @@ py::array predicate_signs(py::handle points_in, py::handle rows_in, int kind, bo
         sign[r] = static_cast<std::int8_t>(k.orientation_d_object()(s));
       }
     }
+    });
   });
   return out;
 }
 
 /// convex_hull(): (facets, neighbors, below, flat) as int32 arrays and a bool, or None when
 /// convex_hull.hpp declines (non-finite, too few or nearly flat points: the caller falls back).
-py::object convex_hull(py::handle points_in) {
+py::object convex_hull(py::handle points_in, const py::object& progress) {
   const py::array points = checked(points_in, float64, -1, "points");
   if (points.shape(1) > dewall::kernel::max_dimension) return py::none();  // the Delaunay route (CGAL dD)
   return dewall::kernel::with_dimension(static_cast<int>(points.shape(1)), [&](auto dim) -> py::object {
     constexpr int D = dim();
     if (points.shape(0) > static_cast<py::ssize_t>(max_index)) throw py::value_error("too many points");
-    std::optional<dewall_python::Convex_hull<D>> hull;
-    {
-      py::gil_scoped_release release;
-      hull = dewall_python::convex_hull<D>(as_points<D>(points));
-    }
+    const auto view = as_points<D>(points);
+    std::optional<dewall_python::Convex_hull<D>> hull = watched(view.size(), progress, [&](Watch& watch) {
+      return dewall_python::convex_hull<D>(view, [&](double fraction) { watch.report(fraction); });
+    });
     if (!hull) return py::none();
     const auto m = static_cast<py::ssize_t>(hull->facets.size());
     return py::make_tuple(adopt<std::int32_t>(std::move(hull->facets), {m, D}),
@@ -593,18 +625,19 @@ py::object convex_hull(py::handle points_in) {
 /// Above 6 dimensions: CGAL's dD Delaunay triangulation (high_dimension.hpp) as
 /// (simplices, neighbors), int32 arrays of shape (m, d + 1) in the conventions
 /// of Triangulation.simplices() and .neighbors().
-py::tuple triangulate_dd(py::handle points_in) {
+py::tuple triangulate_dd(py::handle points_in, const py::object& progress) {
   const py::array points = checked(points_in, float64, -1, "points");
   if (static_cast<std::size_t>(points.shape(0)) > max_index)
     throw py::value_error("more than 2^31 - 1 points (the indices are int32, as scipy's)");
   const int d = static_cast<int>(points.shape(1));
   if (d < 2) throw py::value_error("points of 2 dimensions or more");
-  dewall_python::high_dimension::Cells cells;
-  {
-    py::gil_scoped_release release;
-    cells = dewall_python::high_dimension::triangulate(static_cast<const double*>(points.data()),
-                                                       static_cast<std::size_t>(points.shape(0)), d);
-  }
+  // Watched from the first point: in 7 dimensions and up, thousands of points take seconds.
+  dewall_python::high_dimension::Cells cells =
+      watched(dewall_python::watched_size, progress, [&](Watch& watch) {
+        return dewall_python::high_dimension::triangulate(static_cast<const double*>(points.data()),
+                                                          static_cast<std::size_t>(points.shape(0)), d,
+                                                          [&](double fraction) { watch.report(fraction); });
+      });
   const auto rows = static_cast<py::ssize_t>(cells.count);
   return py::make_tuple(adopt<std::int32_t>(std::move(cells.simplices), {rows, d + 1}),
                         adopt<std::int32_t>(std::move(cells.neighbors), {rows, d + 1}));
@@ -627,13 +660,15 @@ py::array locate_dd(py::handle points_in, py::handle simplices_in, py::handle ne
       throw py::value_error("simplices, neighbors: an index out of range");
   py::array_t<std::int32_t> out(q.shape(0));
   std::int32_t* o = out.mutable_data();
-  {
-    py::gil_scoped_release release;
-    dewall_python::high_dimension::locate(static_cast<const double*>(points.data()),
-                                          static_cast<std::size_t>(points.shape(0)), static_cast<int>(d), s, nb, count,
-                                          static_cast<const double*>(q.data()), static_cast<std::size_t>(q.shape(0)),
-                                          o);
-  }
+  const auto queries_count = static_cast<std::size_t>(q.shape(0));
+  watched(queries_count * 64, py::none(), [&](Watch& watch) {  // (a walk in 7-D and up: many queries' work)
+    watch.blocks(queries_count, poll_block / 16, [&](std::size_t first, std::size_t last) {
+      dewall_python::high_dimension::locate(static_cast<const double*>(points.data()),
+                                            static_cast<std::size_t>(points.shape(0)), static_cast<int>(d), s, nb,
+                                            count, static_cast<const double*>(q.data()) + first * static_cast<std::size_t>(d),
+                                            last - first, o + first);
+    });
+  });
   return out;
 }
 
@@ -708,6 +743,9 @@ PYBIND11_MODULE(_dewall, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const dewall::Cancelled& e) {
+      // Only when the work stopped without a Python exception to raise (none expected).
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const dewall::Invalid_input& e) {
       py::object error = py::handle(invalid_input.ptr())(e.what());
       error.attr("point") = e.point_index() == dewall::Invalid_input::npos ? py::object(py::none())
@@ -727,7 +765,8 @@ PYBIND11_MODULE(_dewall, m) {
       .def("cospherical_neighbours", &Triangulation::cospherical_neighbours)
       .def("voronoi", &Triangulation::voronoi, py::arg("group"));
 
-  m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none());
+  m.def("triangulate", &triangulate, py::arg("points"), py::arg("engine") = "auto", py::arg("threads") = py::none(),
+        py::arg("progress") = py::none());
   m.def("from_simplices", &from_simplices, py::arg("points"), py::arg("simplices"));
   m.def("barycentric_transforms", &barycentric_transforms, py::arg("points"), py::arg("simplices"),
         py::arg("rcond_limit"));
@@ -735,9 +774,9 @@ PYBIND11_MODULE(_dewall, m) {
   m.def("merge_groups", &merge_groups, py::arg("count"), py::arg("pairs"));
   m.def("predicate_signs", &predicate_signs, py::arg("points"), py::arg("rows"), py::arg("kind"),
         py::arg("cgal_dd") = false);
-  m.def("triangulate_dd", &triangulate_dd, py::arg("points"));
+  m.def("triangulate_dd", &triangulate_dd, py::arg("points"), py::arg("progress") = py::none());
   m.def("locate_dd", &locate_dd, py::arg("points"), py::arg("simplices"), py::arg("neighbors"), py::arg("xi"));
-  m.def("convex_hull", &convex_hull, py::arg("points"));
+  m.def("convex_hull", &convex_hull, py::arg("points"), py::arg("progress") = py::none());
   m.def("certify", &certify, py::arg("points"), py::arg("simplices"), py::arg("all") = false);
   m.attr("point_kinds") = py::tuple(py::str(dewall::io::point_kind_names()).attr("split")(", "));
   m.def("generate", &generate, py::arg("kind"), py::arg("n"), py::arg("dim"), py::arg("seed"));

@@ -24,6 +24,7 @@
 
 #include <CGAL/Delaunay_triangulation.h>
 #include <CGAL/Epick_d.h>
+#include <CGAL/spatial_sort.h>
 #include <boost/iterator/indirect_iterator.hpp>
 
 #include <algorithm>
@@ -96,7 +97,7 @@ std::int8_t perturbed_side(const K& k, const std::vector<const Point*>& s, const
 /// tests reach 8: its points and predicates allocate nothing, 1.65× faster on 200 points in
 /// 7-D) or of the dynamic one (every other dimension).
 template <class Kd>
-Cells triangulate_with(const double* x, std::size_t n, int d) {
+Cells triangulate_with(const double* x, std::size_t n, int d, const std::function<void(double)>& progress) {
   using Kd_point = typename Kd::Point_d;
   using Triangulation = CGAL::Delaunay_triangulation<Kd>;
   for (std::size_t i = 0; i < n; ++i)
@@ -118,8 +119,16 @@ Cells triangulate_with(const double* x, std::size_t n, int d) {
   points.reserve(heads.size());
   for (const std::uint32_t h : heads) points.emplace_back(x + h * std::size_t(d), x + (h + 1) * std::size_t(d));
 
+  // As CGAL's insert(begin, end): a spatial sort, then each point from the
+  // cell of the last; here with a report every few points (7-D and up: each
+  // insertion touches hundreds of cells).
   Triangulation dt(d);
-  dt.insert(points.begin(), points.end());
+  CGAL::spatial_sort(points.begin(), points.end(), dt.geom_traits());
+  typename Triangulation::Full_cell_handle hint;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    hint = dt.insert(points[i], hint)->full_cell();
+    if (i % 64 == 63) progress(static_cast<double>(i + 1) / static_cast<double>(points.size()));
+  }
   if (dt.current_dimension() < d)
     throw dewall::Invalid_input("the points do not span E^" + std::to_string(d) + ": all " +
                                 std::to_string(heads.size()) + " distinct points are in one " +
@@ -164,10 +173,10 @@ Cells triangulate_with(const double* x, std::size_t n, int d) {
 
 }  // namespace
 
-Cells triangulate(const double* x, std::size_t n, int d) {
-  if (d == 7) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<7>>>(x, n, d);
-  if (d == 8) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<8>>>(x, n, d);
-  return triangulate_with<K>(x, n, d);
+Cells triangulate(const double* x, std::size_t n, int d, const std::function<void(double)>& progress) {
+  if (d == 7) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<7>>>(x, n, d, progress);
+  if (d == 8) return triangulate_with<CGAL::Epick_d<CGAL::Dimension_tag<8>>>(x, n, d, progress);
+  return triangulate_with<K>(x, n, d, progress);
 }
 
 void predicate_signs(const double* x, std::size_t n, int d, const std::uint32_t* rows, std::size_t count, int kind,

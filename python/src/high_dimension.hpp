@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <cstdint>
 #include <vector>
 
@@ -31,8 +32,10 @@ struct Cells {
 /// vertex, the first occurrence (as the library). \throws dewall::Invalid_input
 /// with the library's messages: a non-finite coordinate, fewer than d + 1
 /// distinct points, points that do not span E^d. Complexity: CGAL's
-/// incremental insertion after a spatial sort.
-Cells triangulate(const double* points, std::size_t n, int d);
+/// incremental insertion after a spatial sort. `progress` is told the
+/// fraction of the points inserted every few points; what it throws stops the
+/// work (and is passed on).
+Cells triangulate(const double* points, std::size_t n, int d, const std::function<void(double)>& progress);
 
 /// The exact predicates on rows of point indices (python's predicate_signs):
 /// kind 0, orientation of d + 1 indices; 1, the side of the last of d + 2

@@ -127,11 +127,13 @@ inline bool walk(std::span<const Edge_incidence> run, bool infinity_first, std::
 /// an edge does not close (not a triangulation).
 /// Complexity: O(m·D²) for m simplices, plus sorting each vertex's neighbours
 /// and a binary search per walk step; a walk reads only its edge's incidences,
-/// side by side, not the simplices.
-template <int D>
+/// side by side, not the simplices. poll() is called every few thousand
+/// vertices; what it throws stops the work (and is passed on).
+template <int D, class Poll>
 Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> simplices,
                                   std::span<const std::array<std::int32_t, D + 1>> neighbors,
-                                  std::span<const std::int32_t> group) {
+                                  std::span<const std::int32_t> group, Poll&& poll) {
+  constexpr std::size_t poll_every = 4096;  // vertices
   Voronoi_topology out;
   const std::size_t m = simplices.size();
 
@@ -172,6 +174,7 @@ Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std:
   std::vector<std::uint32_t> at_hi(vertex_count, 0), his;
   std::vector<detail::Edge_incidence> sorted;
   for (std::size_t lo = 0; lo < vertex_count; ++lo) {
+    if (lo % poll_every == 0) poll();
     const std::span<const detail::Edge_incidence> bucket(incidence.data() + start[lo], start[lo + 1] - start[lo]);
     his.clear();
     for (const auto& e : bucket)
@@ -224,6 +227,7 @@ Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std:
     for (std::size_t t = 0; t < m; ++t)
       for (std::size_t j = 0; j < 3; ++j) around[fill[simplices[t][j]]++] = {t, neighbors[t][(j + 1) % 3], group[t]};
     for (std::size_t p = 0; p < vertex_count; ++p) {
+      if (p % poll_every == 0) poll();
       if (start[p + 1] > start[p])
         detail::walk(std::span<const detail::Edge_incidence>(around.data() + start[p], start[p + 1] - start[p]), false,
                      out.region_vertices, reached);
@@ -250,6 +254,7 @@ Voronoi_topology voronoi_topology(std::size_t vertex_count, std::span<const std:
   }
   out.region_vertices.reserve(around.size() / 2 + vertex_count);
   for (std::size_t p = 0; p < vertex_count; ++p) {
+    if (p % poll_every == 0) poll();
     const auto first = around.begin() + static_cast<std::ptrdiff_t>(start[p]);
     const auto last = around.begin() + static_cast<std::ptrdiff_t>(start[p + 1]);
     if (first != last) {

@@ -42,6 +42,7 @@
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/kernel/floating_point.hpp"
+#include "dewall/detail/progress_meter.hpp"
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/options.hpp"
 #ifndef DEWALL_UNSAFE_FP_FLAGS
@@ -92,6 +93,23 @@ Statistics run_engine(std::span<const typename K::Point_d> points, const Options
   }
 }
 
+/// `output` with the meter of Options::progress (progress_meter.hpp).
+template <int D>
+class Metered_output final : public Simplex_output<D> {
+ public:
+  Metered_output(Simplex_output<D>& output, Progress_meter& meter) : output_(output), meter_(meter) {}
+  Cell_graph_output<D>* cell_graph() override { return output_.cell_graph(); }
+  void expect(std::size_t count) override { output_.expect(count); }
+  void put(std::span<const Built_simplex<D>> block) override { output_.put(block); }
+  void input_no_longer_read() override { output_.input_no_longer_read(); }
+  bool frees_input() const override { return output_.frees_input(); }
+  Progress_meter* progress() override { return &meter_; }
+
+ private:
+  Simplex_output<D>& output_;
+  Progress_meter& meter_;
+};
+
 /// run_engine in an arena of Options::threads threads, when that is given,
 /// and in a task group context of its own: a caller's TBB work being
 /// cancelled must not reach our tasks (a parallel_invoke in a cancelled
@@ -107,7 +125,14 @@ Statistics run_triangulation(std::span<const typename K::Point_d> points, const 
     tbb::task_group_context context(tbb::task_group_context::isolated);
     tbb::task_group group(context);
     Statistics statistics;
-    group.run_and_wait([&] { statistics = run_engine<K>(points, options, k, output); });
+    if (options.progress) {
+      Progress_meter meter(options.progress, points.size());
+      Metered_output<K::dimension> metered(output, meter);
+      group.run_and_wait([&] { statistics = run_engine<K>(points, options, k, metered); });
+      meter.complete();
+    } else {
+      group.run_and_wait([&] { statistics = run_engine<K>(points, options, k, output); });
+    }
     return statistics;
   };
   // More threads than the process may run on (its affinity mask) are capped:
@@ -193,8 +218,9 @@ class Sink_output final : public Simplex_output<D> {
 /// that owns them may free them then (the tool does: at 10^6 points, 24 MB
 /// of its peak). Never while the sink is called.
 /// \throws Invalid_input for non-finite coordinates, fewer than D + 1 distinct
-/// points, or points that do not span E^D. An exception from the sink ends
-/// the triangulation and is passed on.
+/// points, or points that do not span E^D; Cancelled when Options::progress
+/// returned false. An exception from the sink (or from Options::progress)
+/// ends the triangulation and is passed on.
 /// Complexity: expected O(n log n) on uniformly distributed points; with
 /// Engine::automatic (the default) at most a small multiple of the incremental
 /// construction's on any input. Streamed, only until the first region is

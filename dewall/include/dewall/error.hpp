@@ -34,4 +34,13 @@ class Invalid_input : public std::runtime_error {
   std::string reason_;
 };
 
+/// The caller stopped the work: Options::progress returned false. Thrown by
+/// dewall::triangulate and triangulate_to once every thread of the
+/// triangulation has unwound, having freed what it built (a streaming sink
+/// keeps the simplices it was given before).
+class Cancelled : public std::runtime_error {
+ public:
+  Cancelled() : std::runtime_error("dewall: cancelled by the caller (Options::progress returned false)") {}
+};
+
 }  // namespace dewall

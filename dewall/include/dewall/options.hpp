@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string_view>
 
@@ -142,6 +143,19 @@ struct Options {
   /// their speed (docs/engines.md). When it hands over, the incremental
   /// engine's triangulation is whole in memory, as it is without streaming.
   bool stream = false;
+  /// Progress and cancellation for long work, or empty (the default): called
+  /// with the fraction of the work done, in [0, 1], every few thousand points
+  /// inserted, every thousand simplices a wall builds and after each region
+  /// (a few milliseconds apart; the walls' and regions' fraction counts the
+  /// points whose part is done, an estimate that never goes back), and with
+  /// 1 once the triangulation is complete. Never called concurrently, but
+  /// possibly from a thread other than the caller's; it should return at once.
+  /// Returning false stops the work: triangulate and triangulate_to throw
+  /// dewall::Cancelled once the threads have stopped, within a few
+  /// milliseconds (Engine::cgal's CGAL construction is not polled: it stops
+  /// when it is done; the hybrid's regions, each at its end). An exception
+  /// the callback throws stops the work the same way and is passed on.
+  std::function<bool(double fraction)> progress = {};
 };
 
 /// The bounds of the default region size (Options::region_points); the CLI's

@@ -103,4 +103,17 @@ void group_faces(std::size_t vertex_count, std::span<const std::array<std::uint3
   buckets.for_buckets(0, vertex_count, group);
 }
 
+/// group_faces, telling `progress(fraction)` the share of the buckets grouped
+/// every few thousand of them (what it throws stops the work).
+template <std::size_t K, class Group, class Progress>
+void group_faces(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows, Group&& group,
+                 Progress&& progress) {
+  constexpr std::size_t block = std::size_t{1} << 14;
+  const Face_buckets<K> buckets(vertex_count, rows);
+  for (std::size_t first = 0; first < vertex_count; first += block) {
+    progress(static_cast<double>(first) / static_cast<double>(vertex_count));
+    buckets.for_buckets(first, std::min(vertex_count, first + block), group);
+  }
+}
+
 }  // namespace dewall::certify::detail

@@ -24,9 +24,11 @@ namespace dewall::certify {
 /// \throws std::invalid_argument when a facet belongs to more than two
 /// simplices (not a triangulation; certify() says what else is wrong).
 /// Complexity: O(m·(D + 1) + vertex_count) plus small sorts, m simplices.
-template <int D, class Index>
+/// `progress(fraction)`, when given, is told the share done every few
+/// thousand vertices; what it throws stops the work (and is passed on).
+template <int D, class Index, class Progress = void (*)(double)>
 void neighbors(std::size_t vertex_count, std::span<const std::array<std::uint32_t, D + 1>> simplices,
-               std::span<std::array<Index, D + 1>> out) {
+               std::span<std::array<Index, D + 1>> out, Progress&& progress = [](double) {}) {
   static_assert(std::numeric_limits<Index>::is_signed, "−1 marks a hull facet");
   for (auto& row : out) row.fill(-1);
   detail::group_faces<D + 1>(vertex_count, simplices, [&](std::span<const detail::Face_ref> g) {
@@ -38,7 +40,7 @@ void neighbors(std::size_t vertex_count, std::span<const std::array<std::uint32_
       out[g[0].row][static_cast<std::size_t>(g[0].position)] = static_cast<Index>(g[1].row);
       out[g[1].row][static_cast<std::size_t>(g[1].position)] = static_cast<Index>(g[0].row);
     }
-  });
+  }, progress);
 }
 
 }  // namespace dewall::certify

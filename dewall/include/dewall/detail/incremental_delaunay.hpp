@@ -78,6 +78,7 @@
 
 #include "dewall/detail/assert.hpp"
 #include "dewall/detail/cell_graph_output.hpp"
+#include "dewall/detail/progress_meter.hpp"
 #include "dewall/detail/face.hpp"
 #include "dewall/detail/input.hpp"
 #include "dewall/detail/scratch_list.hpp"
@@ -270,6 +271,10 @@ class Incremental_delaunay {
   /// round of zoned insertion (O(n) each), throwing std::logic_error at the
   /// first failure.
   bool check_each_insertion = false;
+  /// Told of every progress_stride points inserted or tried (Options::progress;
+  /// it throws Cancelled when the caller stops the work), or null.
+  Progress_meter* progress = nullptr;
+  static constexpr std::size_t progress_stride = 4096;
   /// Tests: whether the static filter decides every predicate exactly (the
   /// points lie on a small lattice: kernel/static_filter.hpp).
   bool static_filter_exact() const { return static_filter_.exact(); }
@@ -814,7 +819,10 @@ class Incremental_delaunay {
 
   /// Step 3 for vertices first … last − 1 (points_ holds them), one by one.
   void insert_vertices(std::size_t first, std::size_t last) {
-    for (std::size_t k = first; k < last; ++k) insert_serially(static_cast<Index>(k));
+    for (std::size_t k = first; k < last; ++k) {
+      insert_serially(static_cast<Index>(k));
+      if (progress && (k + 1) % progress_stride == 0) progress->advance(progress_stride);
+    }
   }
   void insert_serially(Index v) {
     insert<false>(serial_, v);
@@ -1070,6 +1078,7 @@ class Incremental_delaunay {
       if ((tried == zone_probe && failed * (patient ? 2 : 4) > tried) ||
           (patient && tried == 4 * zone_probe && failed * 4 > tried))
         w.gave_up = true;
+      if (progress && (k + 1) % progress_stride == 0) progress->advance(progress_stride);
     }
   }
 

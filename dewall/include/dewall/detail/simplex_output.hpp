@@ -31,6 +31,8 @@ struct Built_simplex {
 template <int D>
 class Cell_graph_output;
 
+class Progress_meter;
+
 /// The receiver of an engine's simplices, block by block: in output order when
 /// collected or on one thread. Never called concurrently.
 template <int D>
@@ -58,6 +60,9 @@ class Simplex_output {
   /// the walls keep the caller's points for a hand-over instead of making a
   /// copy of their own to give back (wall_engines.hpp).
   virtual bool frees_input() const { return false; }
+  /// Where the engines report their progress and learn that the caller
+  /// stopped them (progress_meter.hpp, Options::progress), or null.
+  virtual Progress_meter* progress() { return nullptr; }
 
  protected:
   ~Simplex_output() = default;

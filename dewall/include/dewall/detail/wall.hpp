@@ -46,6 +46,7 @@
 #include "dewall/detail/first_simplex.hpp"
 #include "dewall/detail/region.hpp"
 #include "dewall/detail/handover_rule.hpp"
+#include "dewall/detail/progress_meter.hpp"
 #include "dewall/detail/simplex_output.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
@@ -91,6 +92,11 @@ class Wall_builder {
 
   const Wall_stats& stats() const { return stats_; }
   const Search_stats& search_stats() const { return search_stats_; }
+
+  /// Told of the points of each subproblem done (no faces left, or a region
+  /// built) and polled every thousand faces a wall loop takes (Options::progress;
+  /// it throws Cancelled when the caller stops the work), or null.
+  Progress_meter* progress = nullptr;
 
  private:
   /// The paper's DeWall(P, AFL): a set of points and the active faces on them.
@@ -150,9 +156,9 @@ class Wall_builder {
   /// DeWall(P, AFL): a region if one applies, else the split (step 1), the
   /// wall (steps 2–4) and the two halves (step 5).
   void recurse(Subproblem p, Task& task) {
-    if (p.depth > 0 && p.afl.empty()) return;
+    if (p.depth > 0 && p.afl.empty()) return done(p);
     task.stats.max_depth = std::max(task.stats.max_depth, p.depth);
-    if (region_may_take(p) && p.points.size() <= region_points_ && as_region(p, task)) return;
+    if (region_may_take(p) && p.points.size() <= region_points_ && as_region(p, task)) return done(p);
     std::vector<Index> extended;  // (split_points: the points with the faces' vertices)
     const Cut cut = split_points(p, extended);
     // A half on one axis-parallel plane has no simplex of its own: two layers
@@ -162,9 +168,12 @@ class Wall_builder {
     if (region_may_take(p) &&
         (on_one_axis_plane(p.points.first(cut.side1_size)) || on_one_axis_plane(p.points.subspan(cut.side1_size))) &&
         as_region(p, task))
-      return;
+      return done(p);
     auto [half1, half2] = build_wall(p, cut, task);
     recurse_on_halves(std::move(half1), std::move(half2), task);
+  }
+  void done(const Subproblem& p) {
+    if (progress) progress->advance(p.points.size());
   }
 
   /// Step 1: α on axis depth mod D, P partitioned in place into P1 and P2.
@@ -326,9 +335,10 @@ class Wall_builder {
   /// the list `list_of(face)` names.
   template <class List_of>
   void wall_loop(Active_face_list<D>& faces, std::size_t level, List_of& list_of, Task& task) {
-    while (!faces.empty()) {
+    for (std::size_t taken = 1; !faces.empty(); ++taken) {
       const Face<D> f = faces.pop();
       if (const auto apex = task.search.make_simplex(f)) add_simplex(with_apex<D>(f, *apex), D, level, list_of, task);
+      if (progress && taken % 1024 == 0) progress->advance();
     }
   }
 

@@ -76,6 +76,7 @@ Statistics triangulate_walls(const K& k, std::span<const typename K::Point_d> po
   try {
     Wall_builder<K> builder(*ps, options.parallel_depth, budget, hybrid ? &hybrid->regions : nullptr,
                             region_points_for(options, ps->size()), streamed_decision);
+    builder.progress = output.progress();
     std::vector<Index> all(ps->size());
     for (std::size_t i = 0; i < all.size(); ++i) all[i] = static_cast<Index>(i);
     Built_simplices<D> built(stream ? &*stream : nullptr);

@@ -26,7 +26,8 @@ enum class Named_format {
   ply,               ///< .ply (points; read, not written)
   off,               ///< .off (points; read, not written)
   obj,               ///< .obj (points; read, not written)
-  foreign,           ///< a known format dewall neither reads nor writes (.stl, .pcd, …)
+  pcd,               ///< .pcd (points; read, not written)
+  foreign,           ///< a known format dewall neither reads nor writes (.stl, .vtu, …)
 };
 
 /// True when `path` ends in `extension` (".vtk"), compared in any case.
@@ -36,12 +37,12 @@ bool has_extension(std::string_view path, std::string_view extension);
 Named_format format_named_by(std::string_view path);
 
 /// \throws Write_error (output_file.hpp) when `path` names a format that
-/// dewall does not write points in: .dwsx, .ele, .msh, .ply, .off, .obj, or a
+/// dewall does not write points in: .dwsx, .ele, .msh, .ply, .off, .obj, .pcd, or a
 /// foreign one. "-" is always accepted.
 void check_points_output_name(const std::string& path);
 
 /// \throws Write_error when `path` names a format that dewall does not write
-/// simplices in: .dwpt, .node, .ply, .off, .obj, or a foreign one. "-" is
+/// simplices in: .dwpt, .node, .ply, .off, .obj, .pcd, or a foreign one. "-" is
 /// always accepted.
 void check_simplices_output_name(const std::string& path);
 

@@ -8,7 +8,10 @@
 // type float is the float its text or bytes say (then widened exactly), a
 // double the double, and OFF and OBJ text is read as doubles. These are 3D
 // formats: a set whose every z is 0 (or a PLY vertex without z) is read as 2D,
-// as VTK's points are. Hand-written rather than CGAL's readers (CGAL::IO::
+// as VTK's points are. PCD (the Point Cloud Library's) holds points only:
+// the fields x, y and z of each, in text or little-endian binary (not the
+// LZF-compressed binary, which is refused with a word on converting it).
+// Hand-written rather than CGAL's readers (CGAL::IO::
 // read_PLY, read_OFF, read_OBJ), which report failure as a bool: these name
 // the file, the line and what is wrong, as every other reader here does, and
 // read forward only (pipes work).
@@ -55,6 +58,19 @@ Point_table read_obj_points(std::istream& in, const std::string& name);
 bool is_ply_header(std::string_view head);
 bool is_off_header(std::string_view head);
 bool is_obj_header(std::string_view head);
+
+/// The points of a Point Cloud Library PCD file (DATA ascii or binary; the
+/// fields x and y, z when present, each of COUNT 1, of any TYPE and SIZE:
+/// floats read as the float or double stored, integers exactly; the other
+/// fields skipped). \throws Parse_error naming the file (and the line, in
+/// text) for a malformed header, DATA binary_compressed (refused: convert the
+/// file), a missing x or y field, a non-number, an integer coordinate beyond
+/// 2^53, or data that ends early or goes on after the points.
+Point_table read_pcd_points(std::istream& in, const std::string& name);
+
+/// True when `head` starts as a PCD file: PCL's "# .PCD" comment, or a first
+/// statement VERSION.
+bool is_pcd_header(std::string_view head);
 
 /// True when `head` starts as a gmsh mesh ("$MeshFormat").
 bool is_msh_header(std::string_view head);
