@@ -53,7 +53,7 @@
 #include <tbb/task_arena.h>
 
 #include "dewall/certify/certify.hpp"
-#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "fuzz_common.hpp"

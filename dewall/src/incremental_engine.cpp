@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "incremental_support.hpp"

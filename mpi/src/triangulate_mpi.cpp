@@ -93,10 +93,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "dewall/detail/incremental_delaunay.hpp"
-#include "dewall/detail/input.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
+#include "dewall/detail/common/input.hpp"
 #include "dewall/kernel/point.hpp"
-#include "dewall/detail/simplex_sphere.hpp"
+#include "dewall/detail/walls/simplex_sphere.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/orientation.hpp"

@@ -1,4 +1,4 @@
-// The project's own incremental engine (detail/incremental_delaunay.hpp) piece
+// The project's own incremental engine (detail/incremental/incremental_delaunay.hpp) piece
 // by piece: the Hilbert index and the BRIO order, the data structure after
 // every insertion, the cavity against every cell's own conflict test, and the
 // triangulation against CGAL's in 2D–6D on random, lattice, cospherical,
@@ -18,8 +18,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "dewall/detail/incremental_delaunay.hpp"
-#include "dewall/detail/spatial_order.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
+#include "dewall/detail/incremental/brio_order.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/dewall_point_sets.hpp"

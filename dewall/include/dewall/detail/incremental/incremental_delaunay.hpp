@@ -24,7 +24,7 @@
 //    interval and exact stages.
 //
 // Steps:
-//  1. Order: BRIO rounds along a Hilbert curve (spatial_order.hpp).
+//  1. Order: BRIO rounds along a Hilbert curve (brio_order.hpp).
 //  2. First simplex: the first D + 1 affinely independent points in that
 //     order (exact rank, Affine_basis); the points passed over are inserted
 //     next.
@@ -76,12 +76,15 @@
 #define DEWALL_CAN_RELEASE_PAGES 1
 #endif
 
-#include "dewall/detail/assert.hpp"
-#include "dewall/detail/cell_graph_output.hpp"
-#include "dewall/detail/face.hpp"
-#include "dewall/detail/input.hpp"
-#include "dewall/detail/scratch_list.hpp"
-#include "dewall/detail/spatial_order.hpp"
+#include "dewall/detail/common/assert.hpp"
+#include "dewall/detail/common/box.hpp"
+#include "dewall/detail/common/cell_graph_output.hpp"
+#include "dewall/detail/common/hashing.hpp"
+#include "dewall/detail/common/index.hpp"
+#include "dewall/detail/common/input.hpp"
+#include "dewall/detail/common/parallel.hpp"
+#include "dewall/detail/incremental/brio_order.hpp"
+#include "dewall/detail/incremental/scratch_list.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/point.hpp"

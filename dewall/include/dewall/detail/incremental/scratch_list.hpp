@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
+#include "dewall/detail/common/assert.hpp"
 
 namespace dewall::detail {
 
