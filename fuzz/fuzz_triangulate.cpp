@@ -244,14 +244,16 @@ void run(Byte_source& in) {
   std::vector<std::uint32_t> input_of;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (first.at(points[i].x) == i) distinct.push_back(points[i]), input_of.push_back(static_cast<std::uint32_t>(i));
-  std::array<dewall::detail::Incremental_delaunay<D>, 2> zoned;
+  dewall::detail::Incremental_tuning tuning;
+  tuning.zoned_insertion_threshold = 0;
+  tuning.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
+  tuning.zone_probe = points.size() % 3 ? 2048 : 4;
+  tuning.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
+  tuning.ridge_table_only = tuning.colliding_ridge_keys = points.size() % 7 == 0;
+  std::array<dewall::detail::Incremental_delaunay<D>, 2> zoned{dewall::detail::Incremental_delaunay<D>(tuning),
+                                                               dewall::detail::Incremental_delaunay<D>(tuning)};
   for (int threads = 1; threads <= 2; ++threads) {
     auto& dt = zoned[static_cast<std::size_t>(threads - 1)];
-    dt.zoned_insertion_threshold = 0;
-    dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
-    dt.zone_probe = points.size() % 3 ? 2048 : 4;
-    dt.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
-    dt.ridge_table_only = dt.colliding_ridge_keys = points.size() % 7 == 0;
     tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
   }
   std::vector<dewall::Simplex<D>> cells;

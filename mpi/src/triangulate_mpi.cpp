@@ -562,8 +562,10 @@ class Rank_triangulation {
                 [&](std::size_t k) { return in_dt_ + k; });
           } else {
             const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
-            dt = detail::Incremental_delaunay<D>();
-            dt.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+            // Zones off: this rank runs on one thread, where zones only cost.
+            detail::Incremental_tuning no_zones;
+            no_zones.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+            dt = detail::Incremental_delaunay<D>(no_zones);
             dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
             built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
                              &all_blocks_);

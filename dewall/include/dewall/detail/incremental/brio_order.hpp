@@ -16,14 +16,9 @@
 //    with 3/16, and so on, the first round taking all points that would come
 //    before a round of `smallest_round` points (CGAL's multiscale sort uses the
 //    same ratio; the draws replace its shuffle, which reads the points in
-//    random order). Rounds of at least 250 points: with 1000, an input of up
-//    to 4000 points was one round, a single pass along the curve, which
-//    builds long thin cells first and destroys them later (two planes, 10^3
-//    points: 29,012 cells created against CGAL's 23,063; with 250, 23,046).
-//    Measured with an engine driver, 3D, 10^3 points, 1000 → 250: two planes
-//    −21 %, uniform −12 %, a sphere −16 %, a torus −10 %; 2D uniform −18 %;
-//    4D −10 to −14 %; 10^4 points within ±2 % (64, CGAL's 3D threshold, the
-//    same at 10^3 and up to 3 % slower on a circle at 10^4).
+//    random order). Rounds of at least 250 points: with larger ones a small
+//    input is one round, a single pass along the curve, which builds long
+//    thin cells first and destroys them later (docs/engines.md, "order").
 // 2. Each round sorted by the Hilbert index of its points (J. Skilling,
 //    "Programming the Hilbert curve", AIP Conf. Proc. 707, 2004: the
 //    transposed index from the axes, then the bits interleaved; in 2D and 3D
@@ -43,8 +38,7 @@
 //    equal points have equal keys, so after the sort they lie in one run of
 //    equal keys, in input order; comparing the points within each run (most
 //    runs are one point long) finds them without the hash table of
-//    kernel::first_occurrences, which cost 13–26 ms of a 2D construction's
-//    450 at 10^6 points (docs/engines.md).
+//    kernel::first_occurrences (docs/engines.md has the figures).
 // Floating point only ranks here: the order changes the time, never the
 // triangulation (which is a function of the point set).
 #pragma once
@@ -103,8 +97,7 @@ void append_first_occurrences(std::span<const std::uint32_t> run, Coords& coords
   }
   // Many points in one grid cell of one round: one point repeated many
   // times, or a cluster. The copies of the run's first point are found in
-  // one pass (a point repeated 10^6 times then sorts nothing: 148 ms sorted,
-  // against the hash table's 17), the rest sorted by (point, index), their
+  // one pass (a point repeated many times then sorts nothing), the rest sorted by (point, index), their
   // coordinates copied rather than read through the index at every
   // comparison, and each after the first of its group repeats.
   std::vector<std::uint32_t> repeats;
@@ -128,8 +121,7 @@ void append_first_occurrences(std::span<const std::uint32_t> run, Coords& coords
 /// The levels of the Hilbert order's grid for `count` points: at least 4
 /// cells a point spacing of uniform points (2^(D·(bits − 2)) ≥ count). Finer
 /// grids only split cells that hold no two points, and each level costs the
-/// keys and the radix sort (uniform 10^6: 3 passes instead of 5 in 3D and of
-/// 4 in 2D).
+/// keys and the radix sort.
 template <int D>
 inline constexpr int max_grid_bits = 60 / D < 16 ? 60 / D : 16;
 template <int D>

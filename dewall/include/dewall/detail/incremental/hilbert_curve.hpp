@@ -93,8 +93,8 @@ constexpr std::uint64_t skilling_hilbert_index(std::array<std::uint32_t, D> x, i
 /// reached by a prefix of octants, is probed one level deeper (the transform
 /// nests: on a grid of fewer levels a cell's index is the leading digits of
 /// its sub-cells'). 24 states; a test checks it against the transform at
-/// every level. 8 ns a cell at 9 levels against the transform's 31 (a
-/// quarter of the 3D order's time at 10^6 points).
+/// every level. A lookup a level is a fraction of the transform's cost
+/// (docs/engines.md, "order").
 inline constexpr auto hilbert_table_3 = [] {
   constexpr int max_states = 32, max_depth = 15;
   using Prefix = std::array<unsigned, max_depth>;
@@ -139,10 +139,9 @@ inline constexpr auto hilbert_table_3 = [] {
 }();
 
 /// The Hilbert index of a grid cell (as skilling_hilbert_index, the same
-/// curve). In 2D from hilbert_table_2, four lookups (bits ≤ 16; measured:
-/// 2.7 ns a cell against 48 ns for the transform, which took a tenth of a 2D
-/// construction), in 3D from hilbert_table_3, one a level; the test checks
-/// both equal the transform.
+/// curve). In 2D from hilbert_table_2, four lookups (bits ≤ 16), in 3D from
+/// hilbert_table_3, one a level, both far cheaper than the transform; the
+/// test checks both equal the transform.
 template <int D>
 std::uint64_t hilbert_index(std::array<std::uint32_t, D> x, int bits) {
   if constexpr (D == 2) {
