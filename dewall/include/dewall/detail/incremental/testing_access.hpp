@@ -20,11 +20,12 @@ struct Incremental_testing_access {
   /// inside, is off for the call.
   template <int D>
   static std::vector<std::size_t> cavity(Incremental_delaunay<D>& dt, const kernel::Point_d<D>& q) {
-    const auto filter = std::exchange(dt.static_filter_, kernel::Static_filter_d<D>());
-    dt.template find_cavity<false>(dt.serial_, q, Incremental_delaunay<D>::infinite);
-    dt.clear_marks(dt.serial_);
-    dt.static_filter_ = filter;
-    std::vector<std::size_t> cells(dt.serial_.cavity.begin(), dt.serial_.cavity.end());
+    Bowyer_watson<D>& bw = dt;
+    const auto filter = std::exchange(bw.static_filter_, kernel::Static_filter_d<D>());
+    bw.template find_cavity<false>(bw.serial_, q, Incremental_delaunay<D>::infinite);
+    bw.clear_marks(bw.serial_);
+    bw.static_filter_ = filter;
+    std::vector<std::size_t> cells(bw.serial_.cavity.begin(), bw.serial_.cavity.end());
     std::sort(cells.begin(), cells.end());
     return cells;
   }
@@ -32,7 +33,8 @@ struct Incremental_testing_access {
   /// lie on a small lattice: kernel/static_filter.hpp).
   template <int D>
   static bool static_filter_exact(const Incremental_delaunay<D>& dt) {
-    return dt.static_filter_.exact();
+    const Bowyer_watson<D>& bw = dt;
+    return bw.static_filter_.exact();
   }
 };
 

@@ -51,14 +51,14 @@ DEWALL_FLOATING_POINT_CODE_BEGIN
 namespace dewall::detail {
 
 template <int D>
-class Incremental_delaunay;
+class Bowyer_watson;
 
-/// One run of zoned rounds over an Incremental_delaunay (its friend), for
+/// One run of zoned rounds over a Bowyer_watson engine (its friend), for
 /// vertices first … last − 1. The steps of a round are the functions below,
 /// in the order run calls them.
 template <int D>
 class Zoned_insertion {
-  using Engine = Incremental_delaunay<D>;
+  using Engine = Bowyer_watson<D>;
   using Worker = Insertion_worker<D>;
 
  public:
@@ -86,7 +86,7 @@ class Zoned_insertion {
   /// One round along `axis`; false when it did not run (hopeless: the rounds end).
   bool run_round(int axis) {
     // Cells per point so far (it grows on surfaces): each zone's new slots are sized from it.
-    const double per_point = static_cast<double>(dt_.slots() - dt_.serial_.free.size()) /
+    const double per_point = static_cast<double>(dt_.store_.slots() - dt_.serial_.free.size()) /
                              static_cast<double>(last_ - pending_.size());
     dt_.cut_axis_ = axis;
     dt_.cut_ = median_cut(axis);
@@ -165,8 +165,8 @@ class Zoned_insertion {
       std::size_t beyond_hull = 0;
       for (std::size_t k = 0; k < points[z].size() && !hopeless; k += hint_spacing) {
         const std::size_t c = dt_.template locate<false>(dt_.serial_, dt_.points_[points[z][k]]);
-        const int i = dt_.infinite_position(c);
-        dt_.serial_.last = i > D ? c : dt_.neighbor(c, i);
+        const int i = dt_.store_.infinite_position(c);
+        dt_.serial_.last = i > D ? c : dt_.store_.neighbor(c, i);
         beyond_hull += i <= D;
         hopeless = D == 2 && beyond_hull * waits > count;
         bool own = i > D;
@@ -182,7 +182,7 @@ class Zoned_insertion {
   /// out leaves its points to the next round).
   void give_slots(const std::array<std::vector<Index>, 2>& points, double per_point) {
     std::vector<Index>& free = dt_.serial_.free;
-    std::size_t grown = dt_.slots();
+    std::size_t grown = dt_.store_.slots();
     for (std::size_t z = 0; z < 2; ++z) {
       Worker& w = workers_[z];
       w.new_cells.clear();
@@ -204,7 +204,7 @@ class Zoned_insertion {
   void take_back_slots() {
     for (std::size_t z = 2; z-- > 0;) {
       Worker& w = workers_[z];
-      if (w.end_slot == dt_.slots()) {
+      if (w.end_slot == dt_.store_.slots()) {
         dt_.store_.resize(w.next_slot);
       } else {
         for (std::size_t s = w.next_slot; s < w.end_slot; ++s) {
@@ -267,7 +267,7 @@ class Zoned_insertion {
     const std::size_t start = w.last;  // (a failed walk moves w.last: locate)
     bool inserted = start != Engine::no_cell && dt_.template insert<true>(w, v);
     if (!inserted && (start == Engine::no_cell || w.walk_failed) && !w.out_of_slots && hint != Engine::no_cell &&
-        hint != start && !dt_.is_free(hint) && !dt_.is_infinite(hint)) {
+        hint != start && !dt_.store_.is_free(hint) && !dt_.store_.is_infinite(hint)) {
       const std::size_t from = w.last;
       w.last = hint;
       inserted = dt_.template insert<true>(w, v);
