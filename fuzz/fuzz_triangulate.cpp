@@ -234,7 +234,7 @@ void run(Byte_source& in) {
     CHECK_ON(checker, dewall::kernel::orientation_d<D>(refs) == dewall::kernel::POSITIVE);
   }
 
-  // Property 7: zoned insertion (Incremental_delaunay::insert_in_zones, which
+  // Property 7: zoned insertion (Zoned_insertion, zoned_insertion.hpp, which
   // the library uses from 2^16 points on), every point after the first
   // 256th (the BRIO sample's own sample) in zones: CGAL's cells, and on two threads the same cells in the same
   // slots as on one; zones that run out of slots or give up early, or try

@@ -322,7 +322,7 @@ class Bowyer_watson : public Cell_geometry<D> {
   /// the predicates load anyway (a per-vertex zone array was a cache miss).
   std::uint8_t zone_of(const Point& p) const { return p.x[cut_axis_] < cut_ ? 0 : 1; }
   /// Zoned insertion: whether vertex v is in w's zone. The infinite vertex
-  /// is in every zone above 2D and in none in 2D (insert_in_zones says why).
+  /// is in every zone above 2D and in none in 2D (zoned_insertion.hpp says why).
   bool owns(const Worker& w, Index v) const {
     if (v == infinite) return D > 2;
     return zone_of(points_[v]) == w.zone;

@@ -19,8 +19,8 @@ struct Incremental_statistics {
   std::size_t conflict_cells = 0; // cells destroyed, summed over insertions
   std::size_t created_cells = 0;  // cells made, summed over insertions
   std::size_t ridge_table_stars = 0;  // stars glued through the ridge hash table
-  std::size_t zoned_points = 0;   // points a zone inserted (insert_in_zones)
-  std::size_t zone_rounds = 0;    // rounds whose zones ran (insert_in_zones)
+  std::size_t zoned_points = 0;   // points a zone inserted (Zoned_insertion)
+  std::size_t zone_rounds = 0;    // rounds whose zones ran (Zoned_insertion)
   std::size_t near_cut_points = 0;  // waits untried beside the cut (near_cut), summed over rounds
   std::size_t hull_starts = 0;    // 2D: cavities started on a hull edge found along the hull
   std::size_t semi_static_first_windows = 0;  // 3D: windows of sphere tests with the semi-static bound first (choose_filter_order)
