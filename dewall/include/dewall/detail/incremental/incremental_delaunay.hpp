@@ -89,14 +89,11 @@ class Incremental_delaunay : public Bowyer_watson<D> {
   using Store = Cell_store<D>;
 
  public:
-  using Point = kernel::Point_d<D>;
-  using Cell = typename Store::Cell;
-  /// The vertex id of the infinite vertex.
-  static constexpr Index infinite = Store::infinite;
-  /// A free slot's first vertex.
-  static constexpr Index free_slot = Store::free_slot;
-  /// Bits of a neighbour reference that hold the facet index.
-  static constexpr int facet_bits = Store::facet_bits;
+  using typename Base::Cell;
+  using typename Base::Point;
+  using Base::facet_bits;
+  using Base::free_slot;
+  using Base::infinite;
 
   /// \throws std::invalid_argument when `tuning` is out of range (Incremental_tuning::validate).
   explicit Incremental_delaunay(const Incremental_tuning& tuning = {}) : Base(tuning) {}
