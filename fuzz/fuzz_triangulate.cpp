@@ -53,7 +53,7 @@
 #include <tbb/task_arena.h>
 
 #include "dewall/certify/certify.hpp"
-#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "fuzz_common.hpp"
@@ -234,7 +234,7 @@ void run(Byte_source& in) {
     CHECK_ON(checker, dewall::kernel::orientation_d<D>(refs) == dewall::kernel::POSITIVE);
   }
 
-  // Property 7: zoned insertion (Incremental_delaunay::insert_in_zones, which
+  // Property 7: zoned insertion (Zoned_insertion, zoned_insertion.hpp, which
   // the library uses from 2^16 points on), every point after the first
   // 256th (the BRIO sample's own sample) in zones: CGAL's cells, and on two threads the same cells in the same
   // slots as on one; zones that run out of slots or give up early, or try
@@ -244,14 +244,16 @@ void run(Byte_source& in) {
   std::vector<std::uint32_t> input_of;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (first.at(points[i].x) == i) distinct.push_back(points[i]), input_of.push_back(static_cast<std::uint32_t>(i));
-  std::array<dewall::detail::Incremental_delaunay<D>, 2> zoned;
+  dewall::detail::Incremental_tuning tuning;
+  tuning.zoned_insertion_threshold = 0;
+  tuning.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
+  tuning.zone_probe = points.size() % 3 ? 2048 : 4;
+  tuning.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
+  tuning.ridge_table_only = tuning.colliding_ridge_keys = points.size() % 7 == 0;
+  std::array<dewall::detail::Incremental_delaunay<D>, 2> zoned{dewall::detail::Incremental_delaunay<D>(tuning),
+                                                               dewall::detail::Incremental_delaunay<D>(tuning)};
   for (int threads = 1; threads <= 2; ++threads) {
     auto& dt = zoned[static_cast<std::size_t>(threads - 1)];
-    dt.zoned_insertion_threshold = 0;
-    dt.zone_slots_scale = points.size() % 2 ? 1 : 0.25;
-    dt.zone_probe = points.size() % 3 ? 2048 : 4;
-    dt.near_cut_spacings = points.size() % 5 ? 2.0 : 0.0;
-    dt.ridge_table_only = dt.colliding_ridge_keys = points.size() % 7 == 0;
     tbb::task_arena(threads).execute([&] { CHECK_ON(checker, dt.build(std::span<const Point_d<D>>(distinct))); });
   }
   std::vector<dewall::Simplex<D>> cells;

@@ -9,7 +9,7 @@
 //     collected with the default regions, else one region's worth): the
 //     incremental construction alone (below that the walls and regions cost
 //     more than they gain on one thread and on two).
-//  3. Otherwise the hybrid (wall_engines.hpp) with a Search_budget charged by
+//  3. Otherwise the hybrid (dewall_engine.hpp) with a Search_budget charged by
 //     every search; when the walls' searches prove too costly, or a region
 //     saves no search (handover_rule.hpp, the whole rule of a spent budget),
 //     the incremental construction builds the whole triangulation from
@@ -26,9 +26,9 @@
 #endif
 
 #include "incremental_choice.hpp"
-#include "dewall/detail/handover_rule.hpp"
-#include "dewall/detail/input.hpp"
-#include "dewall/detail/wall_engines.hpp"
+#include "dewall/detail/walls/handover_rule.hpp"
+#include "dewall/detail/common/input.hpp"
+#include "dewall/detail/walls/dewall_engine.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/options.hpp"
 

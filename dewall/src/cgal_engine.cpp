@@ -19,7 +19,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "dewall/detail/input.hpp"
+#include "dewall/detail/common/input.hpp"
 #include "dewall/kernel/point.hpp"
 #include "incremental_support.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags

@@ -9,7 +9,7 @@
 #include <span>
 #include <vector>
 
-#include "dewall/detail/region.hpp"
+#include "dewall/detail/walls/region.hpp"
 #include "dewall/dewall.hpp"
 
 namespace dewall::detail {

@@ -5,7 +5,7 @@
 // installed: a user's file never compiles it (floating_point.hpp says why).
 //
 // The engines, one file each:
-//   DeWall, the hybrid .......... dewall/detail/wall_engines.hpp (any kernel)
+//   DeWall, the hybrid .......... dewall/detail/walls/dewall_engine.hpp (any kernel)
 //   automatic ................... automatic_engine.hpp (the choice and the hand-over)
 //   the project's incremental ... incremental_engine.hpp, .cpp
 //   CGAL's incremental .......... cgal_engine.hpp, .cpp
@@ -16,7 +16,7 @@
 #include "cgal_engine.hpp"
 #include "incremental_choice.hpp"
 #include "incremental_engine.hpp"
-#include "dewall/detail/wall_engines.hpp"
+#include "dewall/detail/walls/dewall_engine.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 

@@ -13,7 +13,7 @@
 
 #include "cgal_engine.hpp"
 #include "incremental_engine.hpp"
-#include "dewall/detail/region.hpp"
+#include "dewall/detail/walls/region.hpp"
 #include "dewall/options.hpp"
 
 namespace dewall::detail {

@@ -11,7 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "dewall/detail/incremental_delaunay.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "incremental_support.hpp"
@@ -144,7 +144,7 @@ Statistics triangulate_incremental(std::span<const kernel::Point_d<D>> points, S
                                    const Distinct_points* given_distinct) {
   const kernel::Fp_environment_guard guard;
   Incremental_delaunay<D> dt;
-  dt.progress = output.progress();
+  dt.set_progress(output.progress());
   const auto input_no_longer_read = [&] { output.input_no_longer_read(); };
   if (given_distinct) {
     Distinct_points unused;

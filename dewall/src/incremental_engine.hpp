@@ -1,4 +1,4 @@
-// The project's own incremental engine (detail/incremental_delaunay.hpp) as the
+// The project's own incremental engine (detail/incremental/incremental_delaunay.hpp) as the
 // library uses it: a whole triangulation (Engine::incremental, and where
 // Engine::automatic leaves the input to an incremental construction) and the
 // hybrid's regions. The twin of cgal_engine.hpp, with the same contracts.
@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "dewall/detail/region.hpp"
+#include "dewall/detail/walls/region.hpp"
 #include "dewall/dewall.hpp"
 
 namespace dewall::detail {

@@ -1,6 +1,6 @@
 // What the two incremental engines of the library share (cgal_engine.cpp:
 // CGAL's construction; incremental_engine.cpp: the project's own,
-// detail/incremental_delaunay.hpp): the input checks, the hand-over of the
+// detail/incremental/incremental_delaunay.hpp): the input checks, the hand-over of the
 // finite cells in blocks, and Region_filter's walk over a region's cells.
 // Private to dewall/src.
 #pragma once
@@ -9,9 +9,9 @@
 #include <span>
 #include <vector>
 
-#include "dewall/detail/input.hpp"
-#include "dewall/detail/region.hpp"
-#include "dewall/detail/simplex_output.hpp"
+#include "dewall/detail/common/input.hpp"
+#include "dewall/detail/walls/region.hpp"
+#include "dewall/detail/common/simplex_output.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/options.hpp"
 

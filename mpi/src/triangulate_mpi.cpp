@@ -93,10 +93,10 @@
 
 #include <tbb/task_arena.h>
 
-#include "dewall/detail/incremental_delaunay.hpp"
-#include "dewall/detail/input.hpp"
+#include "dewall/detail/incremental/incremental_delaunay.hpp"
+#include "dewall/detail/common/input.hpp"
 #include "dewall/kernel/point.hpp"
-#include "dewall/detail/simplex_sphere.hpp"
+#include "dewall/detail/walls/simplex_sphere.hpp"
 #include "dewall/kernel/filtered_predicate.hpp"  // refuses to build under unsafe flags
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/orientation.hpp"
@@ -562,8 +562,10 @@ class Rank_triangulation {
                 [&](std::size_t k) { return in_dt_ + k; });
           } else {
             const std::size_t count = (hi_ - lo_) + (points_.size() - nb_);
-            dt = detail::Incremental_delaunay<D>();
-            dt.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+            // Zones off: this rank runs on one thread, where zones only cost.
+            detail::Incremental_tuning no_zones;
+            no_zones.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+            dt = detail::Incremental_delaunay<D>(no_zones);
             dt.reserve(detail::Incremental_delaunay<D>::expected_cells(count + count / 8));
             built = dt.build(count, [&](std::size_t k) -> const Coords<D>& { return points_[slot(k)].x; }, slot,
                              &all_blocks_);

@@ -48,7 +48,7 @@ for _public in (InvalidInput, DegenerateInput, InvalidOption, InvalidShape):
 if QhullError.__module__ == __name__:
     QhullError.__module__ = "dewall"
 
-# The library's messages for the conditions scipy reports as QhullError (dewall/detail/input.hpp).
+# The library's messages for the conditions scipy reports as QhullError (dewall/detail/common/input.hpp).
 _DEGENERATE_PREFIXES = ("need at least ", "the points do not span ")
 
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "dewall/certify/certify.hpp"
-#include "dewall/detail/spatial_order.hpp"
+#include "dewall/detail/incremental/brio_order.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/kernel/orientation.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"

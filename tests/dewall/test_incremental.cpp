@@ -1,4 +1,4 @@
-// The project's own incremental engine (detail/incremental_delaunay.hpp) piece
+// The project's own incremental engine (detail/incremental/incremental_delaunay.hpp) piece
 // by piece: the Hilbert index and the BRIO order, the data structure after
 // every insertion, the cavity against every cell's own conflict test, and the
 // triangulation against CGAL's in 2D–6D on random, lattice, cospherical,
@@ -18,8 +18,8 @@
 
 #include <tbb/task_arena.h>
 
-#include "dewall/detail/incremental_delaunay.hpp"
-#include "dewall/detail/spatial_order.hpp"
+#include "dewall/detail/incremental/testing_access.hpp"
+#include "dewall/detail/incremental/brio_order.hpp"
 #include "dewall/kernel/side_of_sphere.hpp"
 #include "support/cgal_reference.hpp"
 #include "support/dewall_point_sets.hpp"
@@ -27,6 +27,15 @@
 namespace {
 
 using dewall::detail::Incremental_delaunay;
+using dewall::detail::Incremental_testing_access;
+using dewall::detail::Incremental_tuning;
+
+/// The default tuning, checking the whole structure after every insertion when `check`.
+Incremental_tuning checking(bool check = true) {
+  Incremental_tuning tuning;
+  tuning.check_each_insertion = check;
+  return tuning;
+}
 using dewall::detail::Incremental_statistics;
 using Point3 = dewall::kernel::Point_d<3>;
 
@@ -53,8 +62,7 @@ dewall::test::Simplex_set<D> incremental_delaunay(const std::vector<dewall::kern
   std::vector<std::size_t> distinct;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (seen.insert(points[i].x).second) distinct.push_back(i);
-  Incremental_delaunay<D> dt;
-  dt.check_each_insertion = check_each_insertion;
+  Incremental_delaunay<D> dt(checking(check_each_insertion));
   dewall::test::Simplex_set<D> out;
   if (!dt.build(
           distinct.size(), [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; },
@@ -447,7 +455,7 @@ TEST_CASE("incremental: the cavity is every cell in conflict, by brute force", "
         }
         if (conflict) brute.push_back(c);
       }
-      CHECK(dt.cavity(q) == brute);
+      CHECK(Incremental_testing_access::cavity(dt, q) == brute);
     }
   }
 }
@@ -458,9 +466,9 @@ TEST_CASE("incremental: the ridge table glues stars as the directed table does",
   std::mt19937_64 rng(36);
   auto check = [](const auto& points) {
     constexpr int D = std::remove_cvref_t<decltype(points[0])>::dimension;
-    Incremental_delaunay<D> directed, ridges;
-    ridges.ridge_table_only = true;
-    ridges.check_each_insertion = true;
+    Incremental_tuning ridge_table = checking();
+    ridge_table.ridge_table_only = true;
+    Incremental_delaunay<D> directed, ridges(ridge_table);
     REQUIRE(directed.build(points));
     REQUIRE(ridges.build(points));
     CHECK(ridges.statistics().ridge_table_stars == points.size() - (D + 1));
@@ -478,11 +486,13 @@ TEST_CASE("incremental: ridge keys that collide glue the same stars", "[incremen
   std::mt19937_64 rng(37);
   auto check = [](const auto& points, bool zoned = false) {
     constexpr int D = std::remove_cvref_t<decltype(points[0])>::dimension;
-    Incremental_delaunay<D> plain, colliding;
-    plain.ridge_table_only = colliding.ridge_table_only = true;
-    if (zoned) plain.zoned_insertion_threshold = colliding.zoned_insertion_threshold = 64;
-    colliding.colliding_ridge_keys = true;
-    colliding.check_each_insertion = true;
+    Incremental_tuning ridge_table;
+    ridge_table.ridge_table_only = true;
+    if (zoned) ridge_table.zoned_insertion_threshold = 64;
+    Incremental_tuning collisions = ridge_table;
+    collisions.colliding_ridge_keys = true;
+    collisions.check_each_insertion = true;
+    Incremental_delaunay<D> plain(ridge_table), colliding(collisions);
     REQUIRE(plain.build(points));
     REQUIRE(colliding.build(points));
     INFO("D = " << D << " rounds " << colliding.statistics().zone_rounds);
@@ -527,8 +537,7 @@ void check_insert_more(const std::vector<dewall::kernel::Point_d<D>>& points) {
   const auto coords = [&](std::size_t k) -> const std::array<double, D>& { return points[distinct[k]].x; };
   const auto all_box = dewall::detail::bounding_box<D>(distinct.size(), coords);
   const std::size_t first = distinct.size() * 3 / 5, second = distinct.size() * 4 / 5;
-  Incremental_delaunay<D> dt;
-  dt.check_each_insertion = distinct.size() <= 400;
+  Incremental_delaunay<D> dt(checking(distinct.size() <= 400));
   REQUIRE(dt.build(first, coords, [&](std::size_t k) { return distinct[k]; }, &all_box));
   dt.insert_more(second - first, [&](std::size_t k) -> const auto& { return coords(first + k); },
                  [&](std::size_t k) { return distinct[first + k]; });
@@ -556,8 +565,7 @@ TEST_CASE("incremental: 2D fans of every size glue as CGAL's cells", "[increment
     for (const auto& p : dewall::test::uniform<2>(30, rng)) points.push_back({{0.5 * p[0] - 0.25, 0.5 * p[1] - 0.25}});
     const auto coords = [&](std::size_t k) -> const std::array<double, 2>& { return points[k].x; };
     const auto box = dewall::detail::bounding_box<2>(points.size(), coords);
-    Incremental_delaunay<2> dt;
-    dt.check_each_insertion = true;
+    Incremental_delaunay<2> dt(checking());
     REQUIRE(dt.build(m, coords, [](std::size_t k) { return k; }, &box));
     const std::size_t created = dt.statistics().created_cells;
     dt.insert_more(1, [&](std::size_t) -> const auto& { return points[m].x; }, [&](std::size_t) { return m; });
@@ -623,7 +631,7 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly, an
     INFO(points.size() << " points in " << D << "D, exact " << exact);
     Incremental_delaunay<D> dt;
     REQUIRE(dt.build(points));
-    CHECK(dt.static_filter_exact() == exact);
+    CHECK(Incremental_testing_access::static_filter_exact(dt) == exact);
     CHECK(dt.is_valid());
     CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<D>(points));
   };
@@ -650,13 +658,12 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly, an
       points.begin());
   const auto coords = [&](std::size_t k) -> const std::array<double, 3>& { return points[k].x; };
   const auto box = dewall::detail::bounding_box<3>(points.size(), coords);
-  Incremental_delaunay<3> dt;
-  dt.check_each_insertion = true;
+  Incremental_delaunay<3> dt(checking());
   REQUIRE(dt.build(first, coords, [](std::size_t k) { return k; }, &box));
-  CHECK(dt.static_filter_exact());
+  CHECK(Incremental_testing_access::static_filter_exact(dt));
   dt.insert_more(points.size() - first, [&](std::size_t k) -> const auto& { return coords(first + k); },
                  [&](std::size_t k) { return first + k; });
-  CHECK(!dt.static_filter_exact());
+  CHECK(!Incremental_testing_access::static_filter_exact(dt));
   CHECK(finite_cells(dt) == dewall::test::cgal_delaunay<3>(points));
 
   // Points on a coarser lattice inserted later keep it exact: the half-integer
@@ -669,10 +676,10 @@ TEST_CASE("incremental: on a small lattice the static filter decides exactly, an
   const auto half_box = dewall::detail::bounding_box<3>(halves.size(), half_coords);
   Incremental_delaunay<3> coarser;
   REQUIRE(coarser.build(on_halves, half_coords, [](std::size_t k) { return k; }, &half_box));
-  CHECK(coarser.static_filter_exact());
+  CHECK(Incremental_testing_access::static_filter_exact(coarser));
   coarser.insert_more(halves.size() - on_halves, [&](std::size_t k) -> const auto& { return half_coords(on_halves + k); },
                       [&](std::size_t k) { return on_halves + k; });
-  CHECK(coarser.static_filter_exact());
+  CHECK(Incremental_testing_access::static_filter_exact(coarser));
   CHECK(coarser.is_valid());
   CHECK(finite_cells(coarser) == dewall::test::cgal_delaunay<3>(halves));
 }
@@ -709,11 +716,13 @@ template <int D>
 void build_zoned(Incremental_delaunay<D>& dt, const std::vector<dewall::kernel::Point_d<D>>& points,
                  std::size_t threshold, int threads, double slots_scale, std::size_t probe,
                  double near_cut_spacings = 2) {
-  dt.filter_order_window = 256;  // both orders of the static filter's bounds, on few points
-  dt.zoned_insertion_threshold = threshold;
-  dt.zone_probe = probe;
-  dt.near_cut_spacings = near_cut_spacings;
-  dt.zone_slots_scale = slots_scale;
+  Incremental_tuning tuning = dt.tuning();  // (its check_each_insertion kept)
+  tuning.filter_order_window = 256;  // both orders of the static filter's bounds, on few points
+  tuning.zoned_insertion_threshold = threshold;
+  tuning.zone_probe = probe;
+  tuning.near_cut_spacings = near_cut_spacings;
+  tuning.zone_slots_scale = slots_scale;
+  dt = Incremental_delaunay<D>(tuning);
   tbb::task_arena arena(threads);
   arena.execute([&] { REQUIRE(dt.build(std::span<const dewall::kernel::Point_d<D>>(points))); });
 }
@@ -728,8 +737,7 @@ Incremental_statistics check_zoned(const std::vector<dewall::kernel::Point_d<D>>
   std::vector<dewall::kernel::Point_d<D>> points;
   for (const auto& p : given)
     if (seen.insert(p.x).second) points.push_back(p);
-  Incremental_delaunay<D> one, two;
-  one.check_each_insertion = true;
+  Incremental_delaunay<D> one(checking()), two;
   build_zoned(one, points, 64, 1, slots_scale, probe, near_cut_spacings);
   build_zoned(two, points, 64, 2, slots_scale, probe, near_cut_spacings);
   const auto cells = finite_cells(one);
@@ -823,8 +831,7 @@ TEST_CASE("incremental: insert_more after zoned insertion, and zones of no point
   // Thresholds of 0: every point after the sample is zoned, rounds end when none is left.
   for (const std::size_t n : {4, 5, 20, 300}) {
     const std::vector<Point3> few(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(n));
-    Incremental_delaunay<3> small;
-    small.check_each_insertion = true;
+    Incremental_delaunay<3> small(checking());
     build_zoned(small, few, 0, 2, 1, 2048);
     CHECK(finite_cells(small) == dewall::test::cgal_delaunay<3>(few));
   }
@@ -864,3 +871,21 @@ TEST_CASE("incremental: releasing a range of slots keeps every slot outside it",
   CHECK(zeroed > 100000);  // the pages went back (else the test checks nothing)
 }
 #endif
+
+TEST_CASE("incremental: a tuning out of range is refused", "[incremental]") {
+  const auto refused = [](auto change) {
+    Incremental_tuning tuning;
+    change(tuning);
+    CHECK_THROWS_AS(Incremental_delaunay<3>(tuning), std::invalid_argument);
+  };
+  refused([](Incremental_tuning& t) { t.zone_probe = 0; });
+  refused([](Incremental_tuning& t) { t.near_cut_spacings = -1; });
+  refused([](Incremental_tuning& t) { t.near_cut_spacings = std::numeric_limits<double>::quiet_NaN(); });
+  refused([](Incremental_tuning& t) { t.zone_slots_scale = 0; });
+  refused([](Incremental_tuning& t) { t.zone_slots_scale = std::numeric_limits<double>::infinity(); });
+  refused([](Incremental_tuning& t) { t.filter_order_window = 0; });
+  Incremental_tuning no_zones;
+  no_zones.zoned_insertion_threshold = std::numeric_limits<std::size_t>::max();
+  no_zones.near_cut_spacings = 0;
+  CHECK_NOTHROW(Incremental_delaunay<3>(no_zones));
+}

@@ -11,11 +11,11 @@
 #include <random>
 #include <vector>
 
-#include "dewall/detail/active_face_list.hpp"
-#include "dewall/detail/face_side_filter.hpp"
-#include "dewall/detail/kd_tree.hpp"
-#include "dewall/detail/point_set.hpp"
-#include "dewall/detail/simplex_sphere.hpp"
+#include "dewall/detail/walls/active_face_list.hpp"
+#include "dewall/detail/walls/face_side_filter.hpp"
+#include "dewall/detail/walls/kd_tree.hpp"
+#include "dewall/detail/walls/point_set.hpp"
+#include "dewall/detail/walls/simplex_sphere.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "support/gmp_reference.hpp"
 

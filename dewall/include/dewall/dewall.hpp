@@ -7,15 +7,15 @@
 // Delaunay_triangulation, on every input, degenerate ones included.
 //
 // Where each step of the paper lives:
-//   splitting plane α ............ detail/split.hpp
-//   DeWall recursion and wall .... detail/wall.hpp
-//   MakeFirstSimplex ............. detail/first_simplex.hpp
-//   active face lists, Update .... detail/active_face_list.hpp, detail/face.hpp
-//   MakeSimplex (dd-nearest) ..... detail/make_simplex.hpp, detail/simplex_sphere.hpp,
-//                                  detail/face_side_filter.hpp, detail/pencil_rank.hpp
-//   uniform grid (here a kd-tree)  detail/kd_tree.hpp
-//   input checks, duplicates ..... detail/input.hpp
-//   the whole run, any kernel .... detail/wall_engines.hpp (DeWall, the hybrid)
+//   splitting plane α ............ detail/walls/split.hpp
+//   DeWall recursion and wall .... detail/walls/wall.hpp
+//   MakeFirstSimplex ............. detail/walls/first_simplex.hpp
+//   active face lists, Update .... detail/walls/active_face_list.hpp, detail/walls/face.hpp
+//   MakeSimplex (dd-nearest) ..... detail/walls/make_simplex.hpp, detail/walls/simplex_sphere.hpp,
+//                                  detail/walls/face_side_filter.hpp, detail/walls/pencil_rank.hpp
+//   uniform grid (here a kd-tree)  detail/walls/kd_tree.hpp
+//   input checks, duplicates ..... detail/common/input.hpp
+//   the whole run, any kernel .... detail/walls/dewall_engine.hpp (DeWall, the hybrid)
 //   which engine runs ............ dewall/src/engine_choice.hpp (compiled; automatic_engine.hpp)
 //
 // With the project's kernel (Filtered_kernel_d, the default) the triangulation
@@ -42,11 +42,11 @@
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/kernel/floating_point.hpp"
-#include "dewall/detail/progress_meter.hpp"
-#include "dewall/detail/simplex_output.hpp"
+#include "dewall/detail/common/progress_meter.hpp"
+#include "dewall/detail/common/simplex_output.hpp"
 #include "dewall/options.hpp"
 #ifndef DEWALL_UNSAFE_FP_FLAGS
-#include "dewall/detail/wall_engines.hpp"
+#include "dewall/detail/walls/dewall_engine.hpp"
 #endif
 
 namespace dewall {

@@ -1,5 +1,5 @@
 // Errors for bad input. Exceptions are for input the caller can fix; broken
-// invariants are assertions (detail/assert.hpp).
+// invariants are assertions (detail/common/assert.hpp).
 #pragma once
 
 #include <cstddef>

@@ -33,14 +33,14 @@ enum class Engine {
   /// Delaunay_triangulation), compiled into the library.
   cgal,
   /// The project's own incremental construction only (Bowyer–Watson over the
-  /// project's kernel: dewall/detail/incremental_delaunay.hpp). Its 32-bit cell
+  /// project's kernel: dewall/detail/incremental/incremental_delaunay.hpp). Its 32-bit cell
   /// references hold 2^30 cells in 2D and 3D (about 1.6·10^8 points in 3D)
   /// and 2^29 above; beyond, std::length_error.
   incremental,
   /// DeWall's walls down to regions of Options::region_points points, each
   /// region triangulated by the incremental construction and the simplices
   /// whose spheres hold no point of the other regions kept (no merge step:
-  /// dewall/detail/region.hpp says why this is exact). The regions are
+  /// dewall/detail/walls/region.hpp says why this is exact). The regions are
   /// independent, so they run in parallel like DeWall's subproblems.
   hybrid,
 };

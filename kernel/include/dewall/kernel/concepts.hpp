@@ -47,7 +47,7 @@
 //      Without either, nothing bounds the approximations and the searches
 //      prune nothing: every search looks at every point (quadratic time;
 //      correct for any approximations).
-//      The check that the points span E^D (detail/input.hpp) is an exact rank
+//      The check that the points span E^D (detail/common/input.hpp) is an exact rank
 //      of the approximations: with a non-exact kernel whose rounding flattens
 //      the points, or rounds a flat set into general position, that check is
 //      wrong.

@@ -20,7 +20,7 @@ namespace dewall::kernel {
 /// equal points: −0 hashes as +0 (they compare equal); on the bits, so that
 /// neither the rounding mode nor a user's -ffast-math can change it. Used by
 /// first_occurrences' table and by the BRIO order's rounds, which must put
-/// equal points in one round (dewall/detail/spatial_order.hpp).
+/// equal points in one round (dewall/detail/incremental/brio_order.hpp).
 template <class Coordinates>
 constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
   std::uint64_t h = 0x9e3779b97f4a7c15u;

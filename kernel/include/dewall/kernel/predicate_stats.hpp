@@ -39,7 +39,7 @@ inline constexpr bool predicate_stats_enabled =
 /// last stage they reached. Always counted, unlike Predicate_stats: a
 /// thread-local increment is nothing beside the 0.1–2 µs those stages take.
 /// Engine::automatic reads them to charge a search for what it really cost
-/// (dewall/detail/handover_rule.hpp).
+/// (dewall/detail/walls/handover_rule.hpp).
 struct Slow_path_counts {
   /// second_stage: decided by the running-error or the interval stage.
   std::uint64_t second_stage = 0, exact = 0;

@@ -29,7 +29,7 @@
 #include "dewall/cgal/detail/facet_matcher.hpp"
 #include "dewall/cgal/detail/geom_traits.hpp"
 #include "dewall/cgal/detail/graph_assembly.hpp"
-#include "dewall/detail/assert.hpp"
+#include "dewall/detail/common/assert.hpp"
 #include "dewall/dewall.hpp"
 #include "dewall/error.hpp"
 #include "dewall/kernel/point.hpp"

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "dewall/detail/cell_graph_output.hpp"
+#include "dewall/detail/common/cell_graph_output.hpp"
 
 namespace dewall::cgal::detail {
 

@@ -25,8 +25,8 @@
 #include <span>
 #include <vector>
 
-#include "dewall/detail/coords.hpp"
-#include "dewall/detail/face.hpp"
+#include "dewall/detail/common/coords.hpp"
+#include "dewall/detail/walls/face.hpp"
 
 namespace dewall::detail {
 

@@ -11,15 +11,12 @@
 #include <cstdint>
 #include <utility>
 
-namespace dewall::detail {
+#include "dewall/detail/common/index.hpp"
 
-using Index = std::uint32_t;
+namespace dewall::detail {
 
 template <int D>
 using Face = std::array<Index, D>;
-
-template <int D>
-using Simplex = std::array<Index, D + 1>;
 
 /// The key identifying a face regardless of orientation: its sorted indices.
 template <int D>

@@ -27,9 +27,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
-#include "dewall/detail/make_simplex.hpp"
-#include "dewall/detail/split.hpp"
+#include "dewall/detail/common/assert.hpp"
+#include "dewall/detail/walls/make_simplex.hpp"
+#include "dewall/detail/walls/split.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

@@ -14,7 +14,7 @@
 #include <cmath>
 #include <limits>
 
-#include "dewall/detail/coords.hpp"
+#include "dewall/detail/common/coords.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

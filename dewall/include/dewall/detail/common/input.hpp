@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
+#include "dewall/detail/common/assert.hpp"
 #include "dewall/error.hpp"
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/sign.hpp"

@@ -29,9 +29,9 @@
 #include <utility>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
-#include "dewall/detail/coords.hpp"
-#include "dewall/detail/face.hpp"
+#include "dewall/detail/common/assert.hpp"
+#include "dewall/detail/common/coords.hpp"
+#include "dewall/detail/walls/face.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

@@ -29,13 +29,13 @@
 #include <optional>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
-#include "dewall/detail/face_side_filter.hpp"
-#include "dewall/detail/pencil_rank.hpp"
-#include "dewall/detail/handover_rule.hpp"
-#include "dewall/detail/simplex_sphere.hpp"
+#include "dewall/detail/common/assert.hpp"
+#include "dewall/detail/walls/face_side_filter.hpp"
+#include "dewall/detail/walls/pencil_rank.hpp"
+#include "dewall/detail/walls/handover_rule.hpp"
+#include "dewall/detail/walls/simplex_sphere.hpp"
 #include "dewall/kernel/concepts.hpp"
-#include "dewall/detail/point_set.hpp"
+#include "dewall/detail/walls/point_set.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

@@ -8,8 +8,8 @@
 #include <optional>
 #include <span>
 
-#include "dewall/detail/face.hpp"
-#include "dewall/detail/coords.hpp"
+#include "dewall/detail/walls/face.hpp"
+#include "dewall/detail/common/coords.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

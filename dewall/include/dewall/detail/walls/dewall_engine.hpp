@@ -13,12 +13,12 @@
 #include <span>
 #include <vector>
 
-#include "dewall/detail/handover_rule.hpp"
-#include "dewall/detail/input.hpp"
-#include "dewall/detail/point_set.hpp"
-#include "dewall/detail/region.hpp"
-#include "dewall/detail/simplex_output.hpp"
-#include "dewall/detail/wall.hpp"
+#include "dewall/detail/walls/handover_rule.hpp"
+#include "dewall/detail/common/input.hpp"
+#include "dewall/detail/walls/point_set.hpp"
+#include "dewall/detail/walls/region.hpp"
+#include "dewall/detail/common/simplex_output.hpp"
+#include "dewall/detail/walls/wall.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/options.hpp"
 

@@ -16,7 +16,7 @@
 
 #include <tbb/task_arena.h>
 
-#include "dewall/detail/face.hpp"
+#include "dewall/detail/common/index.hpp"
 
 namespace dewall::detail {
 
@@ -58,7 +58,7 @@ class Simplex_output {
   virtual void input_no_longer_read() {}
   /// Whether input_no_longer_read() lets the caller free the points. If not,
   /// the walls keep the caller's points for a hand-over instead of making a
-  /// copy of their own to give back (wall_engines.hpp).
+  /// copy of their own to give back (dewall_engine.hpp).
   virtual bool frees_input() const { return false; }
   /// Where the engines report their progress and learn that the caller
   /// stopped them (progress_meter.hpp, Options::progress), or null.

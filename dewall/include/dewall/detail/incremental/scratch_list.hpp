@@ -9,14 +9,13 @@
 #include <utility>
 #include <vector>
 
-#include "dewall/detail/assert.hpp"
+#include "dewall/detail/common/assert.hpp"
 
 namespace dewall::detail {
 
 /// Why not std::vector: with link-time optimisation GCC kept
 /// std::vector::push_back out of line in the 2D cavity search (a call for
-/// every cell in conflict and every new cell: 2.6 % of the construction of
-/// 10^4 points on a circle). Here the append is a compare, a store and an
+/// every cell in conflict and every new cell). Here the append is a compare, a store and an
 /// increment; growing is the out-of-line rare case.
 template <class T>
 class Scratch_list {

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "dewall/detail/face.hpp"
+#include "dewall/detail/walls/face.hpp"
 
 namespace dewall::detail {
 

@@ -1,5 +1,5 @@
 // The triangulation with its adjacency, as the project's incremental engine
-// holds it (detail/incremental_delaunay.hpp), handed to a receiver that builds
+// holds it (detail/incremental/incremental_delaunay.hpp), handed to a receiver that builds
 // another data structure from it by index: the CGAL builders
 // (dewall/cgal/detail/graph_assembly.hpp) fill CGAL's cells and neighbours in
 // one pass over the engine's records, with no facet to match. Knows no
@@ -14,7 +14,7 @@
 #include <span>
 #include <type_traits>
 
-#include "dewall/detail/face.hpp"
+#include "dewall/detail/common/index.hpp"
 
 namespace dewall::detail {
 

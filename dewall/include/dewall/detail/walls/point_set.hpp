@@ -10,8 +10,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "dewall/detail/face.hpp"
-#include "dewall/detail/kd_tree.hpp"
+#include "dewall/detail/walls/face.hpp"
+#include "dewall/detail/walls/kd_tree.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 #include "dewall/kernel/sign.hpp"

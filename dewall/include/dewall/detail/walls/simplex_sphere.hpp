@@ -38,8 +38,8 @@
 #include <limits>
 #include <optional>
 
-#include "dewall/detail/coords.hpp"
-#include "dewall/detail/face_side_filter.hpp"
+#include "dewall/detail/common/coords.hpp"
+#include "dewall/detail/walls/face_side_filter.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"

@@ -42,12 +42,12 @@
 #include <utility>
 #include <vector>
 
-#include "dewall/detail/active_face_list.hpp"
-#include "dewall/detail/first_simplex.hpp"
-#include "dewall/detail/region.hpp"
-#include "dewall/detail/handover_rule.hpp"
-#include "dewall/detail/progress_meter.hpp"
-#include "dewall/detail/simplex_output.hpp"
+#include "dewall/detail/walls/active_face_list.hpp"
+#include "dewall/detail/walls/first_simplex.hpp"
+#include "dewall/detail/walls/region.hpp"
+#include "dewall/detail/walls/handover_rule.hpp"
+#include "dewall/detail/common/progress_meter.hpp"
+#include "dewall/detail/common/simplex_output.hpp"
 #include "dewall/kernel/floating_point.hpp"
 
 DEWALL_FLOATING_POINT_CODE_BEGIN

@@ -22,7 +22,7 @@
 #include <limits>
 #include <optional>
 
-#include "dewall/detail/coords.hpp"
+#include "dewall/detail/common/coords.hpp"
 #include "dewall/kernel/determinant.hpp"
 #include "dewall/kernel/error_bounds.hpp"
 #include "dewall/kernel/interval.hpp"
