@@ -35,8 +35,10 @@ std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates co
   }
   constexpr int bits = 32 / D;
   constexpr double cells = double(1u << bits);
-  std::array<double, D> scale;
-  for (int j = 0; j < D; ++j) scale[j] = hi[j] > lo[j] ? (cells - 0.5) / (hi[j] - lo[j]) : 0.0;
+  // Halved coordinates: their differences cannot overflow, so that t below is
+  // in [0, 1] (rounding is monotone) and never NaN, for any finite points.
+  std::array<double, D> extent;
+  for (int j = 0; j < D; ++j) extent[j] = hi[j] * 0.5 - lo[j] * 0.5;
   // Key in the high 32 bits, index in the low ones.
   std::vector<std::uint64_t> a(n), b(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -44,8 +46,10 @@ std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates co
     if (finite(i)) {
       const auto& x = coordinates(points[i]);
       std::array<std::uint32_t, D> q;
-      for (int j = 0; j < D; ++j)
-        q[j] = static_cast<std::uint32_t>(std::clamp((double(x[j]) - lo[j]) * scale[j], 0.0, cells - 1));
+      for (int j = 0; j < D; ++j) {
+        const double t = extent[j] > 0 ? (double(x[j]) * 0.5 - lo[j] * 0.5) / extent[j] : 0.0;
+        q[j] = static_cast<std::uint32_t>(std::min(t * cells, cells - 1));
+      }
       for (int bit = bits - 1; bit >= 0; --bit)
         for (int j = 0; j < D; ++j) key = (key << 1) | ((q[j] >> bit) & 1u);
     }
