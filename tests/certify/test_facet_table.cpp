@@ -260,9 +260,9 @@ TEST_CASE("certify facet table: the same reports as the former certifier, 2D and
 
 TEST_CASE("certify facet table: the same reports as the former certifier, 4D-6D, mutants", "[certify][facet_table]") {
   std::mt19937_64 rng(6162);
-  same_reports<4>(200, rng);
-  same_reports<5>(100, rng);
-  same_reports<6>(50, rng);
+  same_reports<4>(120, rng);
+  same_reports<5>(60, rng);
+  same_reports<6>(30, rng);
 }
 
 TEST_CASE("certify facet table: the same reports over several ranges of rows and vertices", "[certify][facet_table][heavy]") {

@@ -182,7 +182,7 @@ TEST_CASE("command line: triangulate --engine cgal", "[cli][cgal]") {
   }
 }
 
-TEST_CASE("command line: triangulate --stream", "[cli][stream]") {
+TEST_CASE("command line: triangulate --stream", "[cli][stream][heavy]") {
   const dewall::test::Cli_in_directory cli("cli_test_stream");
   using dewall::test::slurp;
   // 40,000 points: walls and regions of 16384 points (streaming takes at most 32768; collected,

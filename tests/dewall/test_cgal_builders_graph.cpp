@@ -243,7 +243,7 @@ TEST_CASE("CGAL builders, both assemblies: 4D equals CGAL", "[cgal][builders][as
 
 // Above 2^16 points the engine inserts in zones, which leave unused slots
 // among the cells (free slots the assembly skips).
-TEST_CASE("CGAL builders, adjacency assembly: zoned insertion's free slots", "[cgal][builders][assembly]") {
+TEST_CASE("CGAL builders, adjacency assembly: zoned insertion's free slots", "[cgal][builders][assembly][heavy]") {
   std::mt19937_64 rng(20261208);
   SECTION("2D") {
     std::vector<K::Point_2> points;

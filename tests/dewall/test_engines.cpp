@@ -158,7 +158,7 @@ TEST_CASE("engines: the hybrid's regions on degenerate inputs", "[engine]") {
   }
 }
 
-TEST_CASE("engines: the same list for every number of threads", "[engine][threads]") {
+TEST_CASE("engines: the same list for every number of threads", "[engine][threads][heavy]") {
   // Options::threads: the list, not only the set, is a function of the points.
   const std::vector<std::vector<dewall::kernel::Point_d<3>>> inputs{
       generated<3>(dewall::io::Point_kind::uniform, 20000, 15),  // 8 regions of the default size
@@ -199,7 +199,7 @@ std::vector<dewall::Simplex<D>> streamed(const std::vector<dewall::kernel::Point
 
 }  // namespace
 
-TEST_CASE("engines: streaming gives the collected set, and the collected list on one thread", "[engine][stream]") {
+TEST_CASE("engines: streaming gives the collected set, and the collected list on one thread", "[engine][stream][heavy]") {
   struct Case {
     std::vector<dewall::kernel::Point_d<3>> points;
     std::size_t region_points;
@@ -259,7 +259,7 @@ TEST_CASE("engines: streaming's default regions grow with the input from 2^21 po
   }
 }
 
-TEST_CASE("engines: a stream settled at its first region never hands over", "[engine][stream]") {
+TEST_CASE("engines: a stream settled at its first region never hands over", "[engine][stream][heavy]") {
   // A budget spent after the first region: uniform points in [0, 2) × [0, 1)²
   // beside points on a sphere, so the top wall cuts the uniform points (a
   // cheap wall), side 1 is uniform (built first on one thread: its regions

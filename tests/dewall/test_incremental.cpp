@@ -765,7 +765,7 @@ std::vector<dewall::kernel::Point_d<2>> circle_points(std::size_t n, std::mt1993
 
 }  // namespace
 
-TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on one and two threads", "[incremental]") {
+TEST_CASE("incremental: zoned insertion gives CGAL's cells, the same slots on one and two threads", "[incremental][heavy]") {
   std::mt19937_64 rng(41);
   // Much of a uniform set goes through the zones (on so few points many
   // cavities meet the cut); the rest waits and is inserted one by one.

@@ -177,7 +177,7 @@ TEMPLATE_TEST_CASE_SIG("kd-tree: ranges, tight boxes and leaves against brute fo
   check_tree<D>(generated<D>(io::Point_kind::uniform, 700, 18), 3, 0);
 }
 
-TEMPLATE_TEST_CASE_SIG("the ball test never drops a box that meets the closed ball (GMP)", "[search][gmp]", ((int D), D),
+TEMPLATE_TEST_CASE_SIG("the ball test never drops a box that meets the closed ball (GMP)", "[search][gmp][heavy]", ((int D), D),
                        2, 3, 4) {
   std::mt19937_64 rng(20261123 + D);
   std::uniform_real_distribution<double> u(-1, 1);
