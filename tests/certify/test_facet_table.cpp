@@ -72,22 +72,27 @@ std::map<std::vector<std::uint32_t>, Members> brute_force(const Rows<D>& rows, c
   return facets;
 }
 
+/// Sorted, the groups come in facet order; unordered (hashed, buckets small
+/// enough), in any order: then they are sorted here before the comparison.
 template <int D>
-void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count) {
+void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count, bool ordered) {
   const auto expected = brute_force<D>(rows, status);
   std::vector<std::pair<std::vector<std::uint32_t>, Members>> got;
   const Rows<D> e = encoded<D>(rows, status);
-  certify::detail::match_facets<D>(vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(e),
-                                   [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
-                                     std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
-                                     f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
-                                     Members m;
-                                     for (const auto& rec : g) {
-                                       CHECK(rec.rest == g[0].rest);
-                                       m.emplace_back(rec.row(), rec.apex, rec.positive());
-                                     }
-                                     got.emplace_back(f, m);
-                                   });
+  certify::detail::match_facets<D>(
+      vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(e),
+      [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
+        std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
+        f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
+        Members m;
+        for (const auto& rec : g) {
+          CHECK(rec.rest == g[0].rest);
+          m.emplace_back(rec.row(), rec.apex, rec.positive());
+        }
+        got.emplace_back(f, m);
+      },
+      ordered);
+  if (!ordered) std::sort(got.begin(), got.end());
   // The same facets, in increasing order, with the same members in row order.
   REQUIRE(got.size() == expected.size());
   std::size_t i = 0;
@@ -99,10 +104,11 @@ void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status
 }
 
 /// Random rows of D + 1 distinct vertices from a small pool (so facets repeat,
-/// some in three rows or more), a fifth of them invalid.
+/// some in three rows or more), a fifth of them invalid; buckets of every
+/// size, below and above what the hashed matching takes.
 template <int D>
 void random_matching(std::mt19937_64& rng) {
-  for (std::size_t pool : {std::size_t{D + 2}, std::size_t{12}, std::size_t{200}}) {
+  for (std::size_t pool : {std::size_t{D + 2}, std::size_t{12}, std::size_t{40}, std::size_t{80}, std::size_t{200}}) {
     Rows<D> rows(500);
     std::vector<std::uint8_t> status(rows.size());
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -113,7 +119,8 @@ void random_matching(std::mt19937_64& rng) {
       status[r] = static_cast<std::uint8_t>(rng() % 5 == 0 ? 0 : 1 + rng() % 2);
     }
     INFO("D = " << D << ", pool " << pool);
-    check_matching<D>(rows, status, pool);
+    check_matching<D>(rows, status, pool, true);
+    check_matching<D>(rows, status, pool, false);
   }
 }
 
@@ -128,7 +135,8 @@ std::string dump(const certify::Report& r) {
 }
 
 /// The certifier and the reference agree, first violation and --all: on 1 and
-/// 2 threads, in the input's numbering and renumbered, and streaming through
+/// 2 threads, in the input's numbering and renumbered, in memory with a
+/// working memory so small that it takes many ranges, and streaming through
 /// temporary files with a working memory so small that it takes many windows.
 template <int D>
 void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, const std::string& what) {
@@ -144,6 +152,8 @@ void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, con
         INFO("spatial order " << spatial);
         CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .spatial_order = spatial})) == expected);
       }
+      INFO("in memory, ranges of a few vertices, in several batches");
+      CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .working_memory = 2048})) == expected);
       INFO("streaming");
       CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .stream = true, .working_memory = 2048})) ==
             expected);
@@ -209,7 +219,7 @@ void same_reports(std::size_t n, std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE("certify facet table: the matching equals a brute-force one, 2D-6D", "[certify][facet_table]") {
+TEST_CASE("certify facet table: the matching, sorted and hashed, equals a brute-force one, 2D-6D", "[certify][facet_table]") {
   std::mt19937_64 rng(61);
   random_matching<2>(rng);
   random_matching<3>(rng);
