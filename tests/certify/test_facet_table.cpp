@@ -74,22 +74,27 @@ std::map<std::vector<std::uint32_t>, Members> brute_force(const Rows<D>& rows, c
   return facets;
 }
 
+/// Sorted, the groups come in facet order; unordered (hashed, buckets small
+/// enough), in any order: then they are sorted here before the comparison.
 template <int D>
-void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count) {
+void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status, std::size_t vertex_count, bool ordered) {
   const auto expected = brute_force<D>(rows, status);
   std::vector<std::pair<std::vector<std::uint32_t>, Members>> got;
   const Rows<D> e = encoded<D>(rows, status);
-  certify::detail::match_facets<D>(vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(e),
-                                   [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
-                                     std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
-                                     f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
-                                     Members m;
-                                     for (const auto& rec : g) {
-                                       CHECK(rec.rest == g[0].rest);
-                                       m.emplace_back(rec.row(), rec.apex, rec.positive());
-                                     }
-                                     got.emplace_back(f, m);
-                                   });
+  certify::detail::match_facets<D>(
+      vertex_count, std::span<const std::array<std::uint32_t, D + 1>>(e),
+      [&](std::size_t v, std::span<const Facet_record<D, std::uint64_t>> g) {
+        std::vector<std::uint32_t> f{static_cast<std::uint32_t>(v)};
+        f.insert(f.end(), g[0].rest.begin(), g[0].rest.end());
+        Members m;
+        for (const auto& rec : g) {
+          CHECK(rec.rest == g[0].rest);
+          m.emplace_back(rec.row(), rec.apex, rec.positive());
+        }
+        got.emplace_back(f, m);
+      },
+      ordered);
+  if (!ordered) std::sort(got.begin(), got.end());
   // The same facets, in increasing order, with the same members in row order.
   REQUIRE(got.size() == expected.size());
   std::size_t i = 0;
@@ -101,10 +106,11 @@ void check_matching(const Rows<D>& rows, const std::vector<std::uint8_t>& status
 }
 
 /// Random rows of D + 1 distinct vertices from a small pool (so facets repeat,
-/// some in three rows or more), a fifth of them invalid.
+/// some in three rows or more), a fifth of them invalid; buckets of every
+/// size, below and above what the hashed matching takes.
 template <int D>
 void random_matching(std::mt19937_64& rng) {
-  for (std::size_t pool : {std::size_t{D + 2}, std::size_t{12}, std::size_t{200}}) {
+  for (std::size_t pool : {std::size_t{D + 2}, std::size_t{12}, std::size_t{40}, std::size_t{80}, std::size_t{200}}) {
     Rows<D> rows(500);
     std::vector<std::uint8_t> status(rows.size());
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -115,7 +121,8 @@ void random_matching(std::mt19937_64& rng) {
       status[r] = static_cast<std::uint8_t>(rng() % 5 == 0 ? 0 : 1 + rng() % 2);
     }
     INFO("D = " << D << ", pool " << pool);
-    check_matching<D>(rows, status, pool);
+    check_matching<D>(rows, status, pool, true);
+    check_matching<D>(rows, status, pool, false);
   }
 }
 
@@ -129,14 +136,15 @@ std::string dump(const certify::Report& r) {
   return s;
 }
 
-/// The ways the certifier is run: in the input's numbering and renumbered, on
-/// 1 and 2 threads, and streaming through temporary files with a working
-/// memory so small that it takes many windows; each for the first violation
-/// and for --all.
-constexpr std::size_t certifier_variants = 12;
+/// The ways the certifier is run: in the input's numbering and renumbered, in
+/// memory with a working memory so small that it takes many ranges, and
+/// streaming through temporary files with a working memory so small that it
+/// takes many windows; on 1 and 2 threads; each for the first violation and
+/// for --all.
+constexpr std::size_t certifier_variants = 16;
 constexpr std::size_t every_variant = certifier_variants;
 
-/// The certifier and the reference agree: in `variant` (one of the twelve
+/// The certifier and the reference agree: in `variant` (one of the sixteen
 /// ways above) or, with every_variant, in all of them.
 template <int D>
 void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, const std::string& what,
@@ -146,18 +154,22 @@ void same_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, con
   const std::span<const kernel::Point_d<D>> points(p);
   const std::span<const std::array<std::uint32_t, D + 1>> rows(t);
   for (bool all : {false, true}) {
-    const auto wanted = [&](std::size_t v) { return variant == every_variant || variant == v + (all ? 6 : 0); };
-    if (!wanted(0) && !wanted(1) && !wanted(2) && !wanted(3) && !wanted(4) && !wanted(5)) continue;
+    const auto wanted = [&](std::size_t v) { return variant == every_variant || variant == v + (all ? 8 : 0); };
+    if (!wanted(0) && !wanted(1) && !wanted(2) && !wanted(3) && !wanted(4) && !wanted(5) && !wanted(6) && !wanted(7)) continue;
     const std::string expected = dump<D>(dewall::test::certify_reference<K>(points, rows, {.all = all, .threads = 1}));
     for (unsigned threads : {1u, 2u}) {
-      const std::size_t first = threads == 1 ? 0 : 3;
+      const std::size_t first = threads == 1 ? 0 : 4;
       INFO("all " << all << ", threads " << threads);
       for (bool spatial : {false, true}) {
         if (!wanted(first + spatial)) continue;
         INFO("spatial order " << spatial);
         CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .spatial_order = spatial})) == expected);
       }
-      if (!wanted(first + 2)) continue;
+      if (wanted(first + 2)) {
+        INFO("in memory, ranges of a few vertices, in several batches");
+        CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .working_memory = 2048})) == expected);
+      }
+      if (!wanted(first + 3)) continue;
       INFO("streaming");
       CHECK(dump<D>(certify::certify<K>(points, rows, {.all = all, .threads = threads, .stream = true, .working_memory = 2048})) ==
             expected);
@@ -228,7 +240,7 @@ void same_reports(std::size_t n, std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE("certify facet table: the matching equals a brute-force one, 2D-6D", "[certify][facet_table]") {
+TEST_CASE("certify facet table: the matching, sorted and hashed, equals a brute-force one, 2D-6D", "[certify][facet_table]") {
   std::mt19937_64 rng(61);
   random_matching<2>(rng);
   random_matching<3>(rng);
@@ -274,7 +286,7 @@ TEST_CASE("certify facet table: the same reports over several ranges of rows and
   same_report<3>(p, t, "uniform, several ranges");
   t.erase(t.begin() + static_cast<std::ptrdiff_t>(t.size() - 100));
   std::swap(t[t.size() - 50][0], t[t.size() - 50][1]);
-  for (std::size_t variant : {0, 5, 8, 10}) same_report<3>(p, t, "uniform, several ranges, a late row dropped", variant);
+  for (std::size_t variant : {0, 6, 7, 11, 13}) same_report<3>(p, t, "uniform, several ranges, a late row dropped", variant);
 }
 
 TEST_CASE("certify spatial order: a permutation, for points at the ends of the double range", "[certify][spatial_order]") {

@@ -24,11 +24,14 @@
 #include <iterator>
 #include <map>
 #include <random>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "dewall/cgal/delaunay_triangulation_2.hpp"
 #include "dewall/cgal/delaunay_triangulation_3.hpp"
 #include "dewall/cgal/delaunay_triangulation_d.hpp"
+#include "dewall/certify/cgal.hpp"
 #include "support/dewall_point_sets.hpp"
 
 using dewall::kernel::Point_d;
@@ -297,5 +300,78 @@ TEST_CASE("CGAL builders: CGAL's constructor forms and classes derived from the 
     };
     CHECK(classified(ours, Alpha_shape::INTERIOR) == classified(theirs, Alpha_shape::INTERIOR));
     CHECK(ours.get_mode() == theirs.get_mode());
+  }
+}
+
+// dewall::cgal::certify on CGAL's own triangulations (certify/include/dewall/certify/cgal.hpp):
+// accepted as canonical, and rejected once an edge (2D) or a facet (3D) is flipped.
+TEST_CASE("dewall::cgal::certify: CGAL's triangulations certified in place, flipped ones rejected", "[cgal][certify]") {
+  std::mt19937_64 rng(20261207);
+  SECTION("2D, and an edge flipped") {
+    for (const auto& input : {dewall::test::uniform<2>(400, rng), dewall::test::lattice<2>(100)}) {
+      std::vector<K::Point_2> points;
+      for (const auto& p : input) points.push_back(to_point<K::Point_2>(p));
+      DT2 dt(points.begin(), points.end());
+      const auto report = dewall::cgal::certify(dt, {.threads = 2});
+      CHECK((report.delaunay && report.canonical));
+      CHECK(report.points == dt.number_of_vertices());
+      CHECK(report.simplices == dt.number_of_faces());
+    }
+    std::vector<K::Point_2> points;
+    for (const auto& p : dewall::test::uniform<2>(400, rng)) points.push_back(to_point<K::Point_2>(p));
+    DT2 dt(points.begin(), points.end());
+    bool flipped = false;
+    for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end() && !flipped; ++f)
+      for (int i = 0; i < 3 && !flipped; ++i) {
+        const auto g = f->neighbor(i);
+        if (dt.is_infinite(g)) continue;
+        // The quadrilateral must be convex for the flip: the new diagonal crosses the old one.
+        const auto& a = f->vertex(i)->point();
+        const auto& b = g->vertex(g->index(f))->point();
+        const auto& c = f->vertex(dt.ccw(i))->point();
+        const auto& d = f->vertex(dt.cw(i))->point();
+        if (CGAL::orientation(a, b, c) == CGAL::orientation(a, b, d) || CGAL::orientation(a, b, c) == CGAL::COLLINEAR ||
+            CGAL::orientation(a, b, d) == CGAL::COLLINEAR)
+          continue;
+        dt.flip(f, i);
+        flipped = true;
+      }
+    REQUIRE(flipped);
+    const auto report = dewall::cgal::certify(dt);
+    CHECK_FALSE(report.delaunay);
+    REQUIRE(report.first_fatal());
+    CHECK(report.first_fatal()->rule == dewall::certify::Rule::not_locally_delaunay);
+  }
+  SECTION("3D with vertex info, and a facet flipped") {
+    std::vector<std::pair<K::Point_3, std::size_t>> points;
+    for (const auto& p : dewall::test::uniform<3>(300, rng)) points.emplace_back(to_point<K::Point_3>(p), points.size());
+    DT3_info dt(points.begin(), points.end());
+    const auto report = dewall::cgal::certify(dt);
+    CHECK((report.delaunay && report.canonical));
+    CHECK(report.simplices == dt.number_of_finite_cells());
+    bool flipped = false;
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end() && !flipped; ++c)
+      for (int i = 0; i < 4 && !flipped; ++i)
+        if (!dt.is_infinite(c->neighbor(i))) flipped = dt.flip(c, i);
+    REQUIRE(flipped);
+    const auto flipped_report = dewall::cgal::certify(dt, {.all = true});
+    CHECK_FALSE(flipped_report.delaunay);
+    REQUIRE(flipped_report.first_fatal());
+    CHECK(flipped_report.first_fatal()->rule == dewall::certify::Rule::not_locally_delaunay);
+  }
+  SECTION("4D") {
+    using DT = CGAL::Delaunay_triangulation<Kd4>;
+    std::vector<Kd4::Point_d> points;
+    for (const auto& p : dewall::test::uniform<4>(100, rng)) points.push_back(to_point<Kd4::Point_d>(p));
+    DT dt(4);
+    dt.insert(points.begin(), points.end());
+    const auto report = dewall::cgal::certify(dt);
+    CHECK((report.delaunay && report.canonical));
+    CHECK(report.simplices == dt.number_of_finite_full_cells());
+  }
+  SECTION("a flat triangulation has no cell to certify") {
+    std::vector<K::Point_3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+    const DT3 dt(points.begin(), points.end());
+    CHECK_THROWS_AS(dewall::cgal::certify(dt), std::invalid_argument);
   }
 }

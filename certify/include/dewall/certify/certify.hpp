@@ -66,16 +66,19 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <exception>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <span>
 #include <system_error>
 #include <thread>
 #include <type_traits>
+#include <utility>
 #include <vector>
 #ifdef __linux__
 #include <sched.h>
@@ -246,14 +249,17 @@ class Certifier {
     std::vector<Cell> block(block_rows), encoded;
     if (!stop()) {
       used_.assign(n, 0);
-      facet_count_.assign(n, 0);
+      usable_.assign(n, 0);
+      for (std::size_t i = 0; i < n; ++i)
+        if (!bad_point_[i] && first_[i] == i) usable_[work_number(static_cast<std::uint32_t>(i))] = 1;
       if (options_.stream) {
+        facet_count_.assign(n, 0);
         // Ranges of vertices whose files hold about a quarter of a window each,
         // assuming (D + 1)(D + 3) facets per point (a little more than uniform
         // points have); a larger file is read once per window it spans.
         const double records = double(n) * (D + 1) * (D + 3) * 4 * sizeof(Facet_record<D, std::uint64_t>);
         const auto files = static_cast<std::size_t>(
-            std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 1024, 1.0, 512.0)));
+            std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 64, 1.0, 512.0)));
         buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
         encoded.resize(block_rows);
       } else if (const std::size_t m = source.remaining(); m != npos) {
@@ -284,6 +290,7 @@ class Certifier {
         out = rows_.data() + r0;
       }
       struct Results {
+        std::size_t proper = 0;
         std::vector<std::size_t> covering;
         std::vector<Violation> fatal;
       };
@@ -306,14 +313,18 @@ class Certifier {
           const auto s = checked_simplex(in[i], r0 + i, res.fatal);
           if (!s) continue;
           out[i] = encode_row(s->sorted, s->positive);
-          count(facet_count_[s->sorted[0]], D, concurrent);
-          count(facet_count_[s->sorted[1]], 1, concurrent);
+          ++res.proper;
+          if (options_.stream) {
+            count(facet_count_[s->sorted[0]], D, concurrent);
+            count(facet_count_[s->sorted[1]], 1, concurrent);
+          }
           for (std::uint32_t v : s->sorted) std::atomic_ref<std::uint8_t>(used_[v]).store(1, std::memory_order_relaxed);
           if (r0 + i != first_row_ && contains_witness(*witness, s->sorted, s->positive)) res.covering.push_back(r0 + i);
         }
       });
       for (Results& res : results) {
         if (stop()) break;
+        proper_rows_ += res.proper;
         for (Violation& v : res.fatal) fail(std::move(v));
         covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
       }
@@ -326,6 +337,7 @@ class Certifier {
         }
     }
     report_.simplices = r0;
+    std::vector<std::uint8_t>().swap(usable_);
     if (buckets_) buckets_->finish();
   }
 
@@ -362,6 +374,29 @@ class Certifier {
   /// orientation, or nothing (its violations appended to `fatal`).
   std::optional<Checked_row> checked_simplex(const Cell& c, std::size_t r, std::vector<Violation>& fatal) const {
     const std::size_t n = points_.size();
+    // The common case first: indices in range, usable points (usable_, in the
+    // certifier's numbers, where the row's points sit close together),
+    // distinct vertices. Anything else takes the walk below, which names
+    // the violations in their order.
+    Cell w;
+    bool fast = true;
+    for (std::size_t i = 0; i <= D && fast; ++i) {
+      fast = c[i] < n;
+      if (fast) w[i] = work_number(c[i]);
+    }
+    if (fast) {
+      for (std::size_t i = 0; i <= D; ++i) fast = fast && usable_[w[i]];
+      const Cell s = sort_row(w).v;
+      for (std::size_t i = 0; i < D; ++i) fast = fast && s[i] != s[i + 1];
+      if (fast) {
+        const kernel::Sign o = orientation_(at(work_, s));
+        if (o == kernel::ZERO) {
+          fatal.push_back({.rule = Rule::degenerate_simplex, .simplex = r});
+          return std::nullopt;
+        }
+        return Checked_row{s, o == kernel::POSITIVE};
+      }
+    }
     bool ok = true;
     for (std::uint32_t v : c)
       if (v >= n) {
@@ -382,8 +417,6 @@ class Certifier {
       }
     }
     if (!ok) return std::nullopt;
-    Cell w;
-    for (std::size_t i = 0; i <= D; ++i) w[i] = work_number(c[i]);
     const Cell s = to_work_.empty() ? sorted : sort_row(w).v;
     const kernel::Sign o = orientation_(at(work_, s));
     if (o == kernel::ZERO) {
@@ -441,7 +474,7 @@ class Certifier {
     buckets_.reset();
   }
 
-  /// Back to the input's numbers: the rows renumbered in place, the facets recounted.
+  /// Back to the input's numbers: the rows renumbered in place.
   void to_input_numbers() {
     for_each_parallel(std::max<std::size_t>(1, rows_.size() / 65536), [&](std::size_t j) {
       const std::size_t parts = std::max<std::size_t>(1, rows_.size() / 65536);
@@ -454,13 +487,6 @@ class Certifier {
         rows_[r] = encode_row(s.v, positive != s.odd);
       }
     });
-    facet_count_.assign(points_.size(), 0);
-    for (Cell c : rows_) {
-      if (!is_valid_row(c)) continue;
-      decode_row(c);
-      facet_count_[c[0]] += D;
-      ++facet_count_[c[1]];
-    }
     std::vector<std::uint32_t>().swap(to_input_);
     std::vector<Point>().swap(work_points_);
     work_ = points_;
@@ -486,6 +512,10 @@ class Certifier {
   /// number of threads.
   template <class Row>
   void facets_pass() {
+    if (!buckets_) {
+      memory_facets_pass<Row>();
+      return;
+    }
     using Record = Facet_record<D, Row>;
     const std::size_t n = points_.size();
     std::size_t total = 0;
@@ -493,10 +523,7 @@ class Certifier {
     // A window's records take at most half the memory of the rows (16 MB at
     // least), or the working memory when streaming: the working set stays
     // within the input's own size.
-    const std::size_t bytes = options_.working_memory || options_.stream
-                                  ? stream_budget()
-                                  : std::max<std::size_t>(std::size_t{1} << 24, rows_.size() * sizeof(Cell) / 2);
-    const std::size_t budget = std::max<std::size_t>(1, bytes / sizeof(Record));
+    const std::size_t budget = std::max<std::size_t>(1, stream_budget() / sizeof(Record));
     const std::size_t ranges =
         std::clamp<std::size_t>(std::max(std::min<std::size_t>(n / 4096, 256), 4 * (total / budget + 1)), 1, std::max<std::size_t>(n, 1));
     const auto range_first = [&](std::size_t r) { return n * r / ranges; };
@@ -517,34 +544,27 @@ class Certifier {
     window_first.push_back(ranges);
     std::vector<Record> storage(largest);
     std::vector<Facet_results> results(ranges);
-    std::vector<Bucket_entry> chunk(buckets_ ? std::max<std::size_t>(1024, std::min<std::size_t>(1 << 16, budget / 8)) : 0);
+    std::vector<Bucket_entry> chunk(std::max<std::size_t>(1024, std::min<std::size_t>(1 << 16, budget / 8)));
     for (std::size_t w = 0; w + 1 < window_first.size() && !stop_facets(); ++w) {
       const std::size_t first = window_first[w], last = window_first[w + 1];
       const std::size_t a = range_first(first), b = range_first(last);
-      Facet_window<D, Row> window(facet_count_, a, b, storage);
+      Facet_window<D, Row> window(std::span<const std::uint32_t>(facet_count_).subspan(a, b - a), a, b, storage);
       // One part of the window's vertices per thread, each reading every row.
       const std::size_t parts = threads_for(b - a);
       const auto part = [&](std::size_t lo, std::size_t hi, std::size_t k) {
         return std::pair{lo + (hi - lo) * k / parts, lo + (hi - lo) * (k + 1) / parts};
       };
-      if (!buckets_) {
-        for_each_parallel(parts, [&](std::size_t k) {
-          const auto [lo, hi] = part(a, b, k);
-          window.file(std::span<const Cell>(rows_), 0, lo, hi);
-        });
-      } else {
-        // The files of the ranges of vertices the window meets; from each, only
-        // the facets whose smallest vertex is in both (a row is in two files
-        // when its two smallest vertices are in two ranges).
-        for (std::size_t f = buckets_->bucket_of(static_cast<std::uint32_t>(a)); f < buckets_->size() && buckets_->first_vertex(f) < b; ++f) {
-          const std::size_t lo = std::max(a, buckets_->first_vertex(f)), hi = std::min(b, buckets_->first_vertex(f + 1));
-          buckets_->for_each(f, chunk, [&](std::span<const Bucket_entry> entries) {
-            for_each_parallel(parts, [&](std::size_t k) {
-              const auto [plo, phi] = part(lo, hi, k);
-              for (const Bucket_entry& e : entries) window.file(e.cell, static_cast<std::size_t>(e.row), plo, phi);
-            });
+      // The files of the ranges of vertices the window meets; from each, only
+      // the facets whose smallest vertex is in both (a row is in two files
+      // when its two smallest vertices are in two ranges).
+      for (std::size_t f = buckets_->bucket_of(static_cast<std::uint32_t>(a)); f < buckets_->size() && buckets_->first_vertex(f) < b; ++f) {
+        const std::size_t lo = std::max(a, buckets_->first_vertex(f)), hi = std::min(b, buckets_->first_vertex(f + 1));
+        buckets_->for_each(f, chunk, [&](std::span<const Bucket_entry> entries) {
+          for_each_parallel(parts, [&](std::size_t k) {
+            const auto [plo, phi] = part(lo, hi, k);
+            for (const Bucket_entry& e : entries) window.file(e.cell, static_cast<std::size_t>(e.row), plo, phi);
           });
-        }
+        });
       }
       for_each_parallel(last - first, [&](std::size_t i) {
         const std::size_t r = first + i;
@@ -561,7 +581,121 @@ class Certifier {
                 prefetch(rec.apex);
                 for (std::uint32_t u : rec.rest) prefetch(u);
               }
-            });
+            },
+            // Renumbered, the order of the facets does not matter: what is found
+            // is sorted afterwards, and a walk in the input's numbers names the first.
+            !renumbered());
+      });
+      merge(std::span<Facet_results>(results).subspan(first, last - first));
+    }
+  }
+
+  /// The two smallest vertices of a valid encoded row (encode_row).
+  static std::pair<std::uint32_t, std::uint32_t> smallest_two(const Cell& c) {
+    if constexpr (D == 2) return {c[0], std::min(c[1], c[2])};
+    else return {c[0], c[1]};
+  }
+
+  /// The facet pass with the rows in memory. The vertices are cut into ranges
+  /// of equal width (a power of two) whose records fit a core's cache, and the
+  /// rows are listed once by range (a counting sort of row numbers): a row is
+  /// in the list of the range of its smallest vertex and, when that differs,
+  /// of its second smallest (the smallest vertex of the facet opposite the
+  /// first). Each range's facets are then filed from its list and grouped at
+  /// once, while they are in cache, ranges on all cores, merged in order.
+  template <class Row>
+  void memory_facets_pass() {
+    using Record = Facet_record<D, Row>;
+    const std::size_t n = points_.size(), m = rows_.size();
+    const std::size_t total = proper_rows_ * (D + 1);
+    const unsigned workers = threads_for(std::numeric_limits<std::size_t>::max());
+    // Records of a range: about 256 KB (a core's cache), within the working
+    // memory when one is set; at most 2^20 ranges.
+    std::size_t target = std::size_t{1} << 18;
+    if (options_.working_memory) target = std::min(target, options_.working_memory / workers);
+    target = std::max<std::size_t>(1, target / sizeof(Record));
+    std::size_t width = std::bit_floor(std::max<std::size_t>(1, target * n / std::max<std::size_t>(total, 1)));
+    width = std::max(width, std::bit_ceil(std::max<std::size_t>(1, (n + (std::size_t{1} << 20) - 1) >> 20)));
+    const int shift = std::countr_zero(width);
+    const std::size_t ranges = (n + width - 1) >> shift;
+
+    // The lists: counted by part of the rows, then filled, each part in row order.
+    const std::size_t parts = threads_for(std::max<std::size_t>(1, m / 65536));
+    std::vector<std::size_t> start(parts * ranges, 0);
+    const auto part_rows = [&](std::size_t p) { return std::pair{m * p / parts, m * (p + 1) / parts}; };
+    for_each_parallel(parts, [&](std::size_t p) {
+      std::size_t* count = start.data() + p * ranges;
+      const auto [a, b] = part_rows(p);
+      for (std::size_t r = a; r < b; ++r) {
+        if (!is_valid_row(rows_[r])) continue;
+        const auto [s0, s1] = smallest_two(rows_[r]);
+        ++count[s0 >> shift];
+        if ((s1 >> shift) != (s0 >> shift)) ++count[s1 >> shift];
+      }
+    });
+    // offset[R * parts + p]: where part p's rows of range R go (the counts are
+    // laid out by part, the lists by range, then part).
+    std::vector<std::size_t> offset(ranges * parts + 1, 0);
+    std::size_t listed = 0;
+    for (std::size_t R = 0; R < ranges; ++R)
+      for (std::size_t p = 0; p < parts; ++p) {
+        offset[R * parts + p] = listed;
+        listed += start[p * ranges + R];
+      }
+    offset[ranges * parts] = listed;
+    std::vector<std::size_t>().swap(start);
+    std::vector<Row> list(listed);
+    for_each_parallel(parts, [&](std::size_t p) {
+      std::vector<std::size_t> next(ranges);
+      for (std::size_t R = 0; R < ranges; ++R) next[R] = offset[R * parts + p];
+      const auto [a, b] = part_rows(p);
+      for (std::size_t r = a; r < b; ++r) {
+        if (!is_valid_row(rows_[r])) continue;
+        const auto [s0, s1] = smallest_two(rows_[r]);
+        list[next[s0 >> shift]++] = static_cast<Row>(r);
+        if ((s1 >> shift) != (s0 >> shift)) list[next[s1 >> shift]++] = static_cast<Row>(r);
+      }
+    });
+
+    std::vector<std::vector<Record>> storage(workers);
+    std::vector<std::vector<std::uint32_t>> counts(workers);
+    std::vector<Facet_results> results(ranges);
+    const std::size_t batch = 64 * std::size_t{workers};
+    for (std::size_t first = 0; first < ranges && !stop_facets(); first += batch) {
+      const std::size_t last = std::min(ranges, first + batch);
+      for_each_parallel(last - first, [&](std::size_t i, unsigned worker) {
+        const std::size_t R = first + i, lo = R << shift, hi = std::min(n, lo + width);
+        const Row* begin = list.data() + offset[R * parts];
+        const Row* end = list.data() + offset[(R + 1) * parts];
+        // The facets per smallest vertex (counted here, from rows the filing
+        // then finds in cache, rather than with atomic counters as rows are read).
+        std::vector<std::uint32_t>& count = counts[worker];
+        count.assign(hi - lo, 0);
+        for (const Row* e = begin; e != end; ++e) {
+          if (end - e > 16) __builtin_prefetch(&rows_[static_cast<std::size_t>(e[16])]);
+          const auto [s0, s1] = smallest_two(rows_[static_cast<std::size_t>(*e)]);
+          if (s0 >= lo) count[s0 - lo] += D;
+          if (s1 < hi) ++count[s1 - lo];
+        }
+        Facet_window<D, Row> window(count, lo, hi, storage[worker]);
+        for (const Row* e = begin; e != end; ++e) {
+          // The rows of a list are in increasing order, apart: ask for them ahead.
+          if (end - e > 16) __builtin_prefetch(&rows_[static_cast<std::size_t>(e[16])]);
+          window.file(rows_[static_cast<std::size_t>(*e)], static_cast<std::size_t>(*e), lo, hi);
+        }
+        window.for_groups(
+            lo, hi,
+            [&](std::size_t v, std::span<const Record> g) { check_facet_group<Row>(static_cast<std::uint32_t>(v), g, results[R]); },
+            [&](std::size_t v, std::span<const Record> next) {
+              prefetch(static_cast<std::uint32_t>(v));
+              for (const Record& rec : next) {
+                prefetch(rec.apex);
+                for (std::uint32_t u : rec.rest) prefetch(u);
+              }
+            },
+            // Renumbered, the order of the facets does not matter: what is found
+            // is sorted afterwards, and a walk in the input's numbers names the first.
+            !renumbered());
       });
       merge(std::span<Facet_results>(results).subspan(first, last - first));
     }
@@ -635,10 +769,17 @@ class Certifier {
     }
     ++out.interior_facets;
     if (!options_.all && !out.delaunay.empty()) return;  // one witness is enough
+    // (facet…, a) positively oriented, then b; the first two exchanged without
+    // a branch (the orientation bit is random: a branch would mispredict).
     std::array<const Point*, D + 2> s;
-    const Cell_points p = oriented(work_, facet, a, g[0].positive());
-    std::copy(p.begin(), p.end(), s.begin());
+    for (std::size_t i = 0; i < D; ++i) s[i] = &work_[facet[i]];
+    s[D] = &work_[a];
     s[D + 1] = &work_[b];
+    const bool positive = g[0].positive();
+    const Point* s0 = s[0];
+    const Point* s1 = s[1];
+    s[0] = positive ? s0 : s1;
+    s[1] = positive ? s1 : s0;
     const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     const auto witness = [&](Rule rule) {
       return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = input_number(b)};
@@ -674,16 +815,19 @@ class Certifier {
   /// cores), then rethrows the exception of the first call that threw (out
   /// of memory, say). Each worker sets the floating-point environment the
   /// kernel's filters assume (floating_point.hpp).
+  /// f may also take the worker's number, below threads_for(count), as a
+  /// second argument (for the worker's own scratch memory).
   template <class F>
   void for_each_parallel(std::size_t count, F&& f) const {
     const unsigned threads = threads_for(count);
     std::vector<std::exception_ptr> errors(count);
     std::atomic<std::size_t> next{0};
-    auto work = [&] {
+    auto work = [&](unsigned worker) {
       const kernel::Fp_environment_guard guard;
       for (std::size_t i; (i = next.fetch_add(1)) < count;) {
         try {
-          f(i);
+          if constexpr (std::is_invocable_v<F&, std::size_t, unsigned>) f(i, worker);
+          else f(i);
         } catch (...) {
           errors[i] = std::current_exception();
         }
@@ -691,11 +835,11 @@ class Certifier {
     };
     std::vector<std::thread> pool;
     try {
-      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+      for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
     } catch (const std::system_error&) {
       // No more threads to be had: those started and this one do the work.
     }
-    work();
+    work(0);
     for (auto& t : pool) t.join();
     for (const auto& e : errors)
       if (e) std::rethrow_exception(e);
@@ -759,7 +903,9 @@ class Certifier {
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
   std::vector<Point> work_points_;
   std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
-  std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex
+  std::vector<std::uint8_t> usable_;        // finite and a first occurrence (while the rows are read)
+  std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex (streaming)
+  std::size_t proper_rows_ = 0;             // rows found proper simplices
   std::vector<Cell> rows_;                  // every row, encode_row'd (in memory)
   std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)
   std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it

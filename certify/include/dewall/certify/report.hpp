@@ -108,8 +108,9 @@ struct Options {
   /// points, a few bytes per point, and `working_memory`.
   bool stream = false;
   /// Bytes for the facet records of one window of vertices (and, streaming,
-  /// the file buffers); 0: as large as the rows in memory, or 512 MiB
-  /// streaming. A window holds one range of vertices at least.
+  /// the file buffers); 0: 256 KiB per thread in memory (a core's cache), or
+  /// 512 MiB streaming. A window holds one vertex (streaming: one range of
+  /// vertices) at least.
   std::size_t working_memory = 0;
   /// Where streaming writes its temporary files (empty: $TMPDIR, else /tmp);
   /// they are unlinked as soon as they are open.
