@@ -216,6 +216,28 @@ TEST_CASE("incremental: the Hilbert index is a bijection between neighbouring ce
   check(std::integral_constant<int, 4>{}, 2);
 }
 
+TEST_CASE("incremental: the Hilbert grid's cells are cubes on a flat box", "[incremental]") {
+  // A tile 1000 × 1000 × 30 (an airborne scan's shape): its grid indexes
+  // every point as the grid over the cube on the same corner whose side is
+  // the tile's longest extent, in both directions.
+  using dewall::detail::brio::Hilbert_grid;
+  std::mt19937_64 rng(40);
+  std::uniform_real_distribution<double> unit(0, 1);
+  const dewall::detail::Box<3> tile{{5e5, 5e6, 250}, {5e5 + 1000, 5e6 + 1000, 280}};
+  const dewall::detail::Box<3> cube{{5e5, 5e6, 250}, {5e5 + 1000, 5e6 + 1000, 1250}};
+  const Hilbert_grid<3> flat(tile, 9), cubic(cube, 9);
+  std::uint64_t highest_z = 0;
+  for (int k = 0; k < 1000; ++k) {
+    const std::array<double, 3> x{5e5 + 1000 * unit(rng), 5e6 + 1000 * unit(rng), 250 + 30 * unit(rng)};
+    for (const bool backwards : {false, true}) CHECK(flat.index(x, backwards) == cubic.index(x, backwards));
+    highest_z = std::max(highest_z, flat.index({5e5, 5e6, x[2]}, false));
+  }
+  // Along z the tile fills 30/1000 of the side's 512 cells: (lo, lo, z) lies
+  // in the corner's sub-cube of side 16, which the curve, starting at the
+  // corner, fills first (with a scale per axis z would reach cell 511).
+  CHECK(highest_z < 16 * 16 * 16);
+}
+
 TEST_CASE("incremental: the BRIO order is a permutation, the same on every run", "[incremental]") {
   std::mt19937_64 rng(31);
   for (std::size_t n : {0, 1, 2, 999, 1000, 1001, 5000}) {

@@ -4,6 +4,7 @@
 // index of its grid cell. Floating point only ranks here.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -173,20 +174,27 @@ std::uint64_t hilbert_index(std::array<std::uint32_t, D> x, int bits) {
 namespace brio {
 
 /// The Hilbert indices of the cells of a grid of 2^bits cells a side over a
-/// box: a function of the point alone (equal points, equal indices). An axis
-/// whose extent overflows (|x| near 2^1023) is measured in half units, so
-/// that it still orders the points (the halves are exact but for
+/// box: a function of the point alone (equal points, equal indices). The
+/// cells are cubes, one scale for every axis (the box's longest extent's):
+/// on a flat box (a terrain tile, a depth frame's few planes) cells as thin
+/// as the box would make the curve jump across the thin axis between
+/// neighbours in the plane, and the walks from one point to the next longer
+/// (docs/performance.md has the walk's steps per point). An input whose
+/// extent overflows (|x| near 2^1023) is measured in half units on every
+/// axis, so that it still orders the points (the halves are exact but for
 /// subnormals, which round alike for equal points).
 template <int D>
 class Hilbert_grid {
  public:
   Hilbert_grid(const Box<D>& box, int bits) : bits_(bits), cells_(static_cast<double>((std::uint32_t{1} << bits) - 1)) {
+    for (int j = 0; j < D; ++j)
+      if (!(box.hi[j] - box.lo[j] < std::numeric_limits<double>::infinity())) unit_ = 0.5;
+    double extent = 0;
     for (int j = 0; j < D; ++j) {
-      unit_[j] = box.hi[j] - box.lo[j] < std::numeric_limits<double>::infinity() ? 1 : 0.5;
-      lo_[j] = box.lo[j] * unit_[j];
-      const double extent = box.hi[j] * unit_[j] - lo_[j];
-      scale_[j] = extent > 0 && extent < std::numeric_limits<double>::infinity() ? cells_ / extent : 0;
+      lo_[j] = box.lo[j] * unit_;
+      extent = std::max(extent, box.hi[j] * unit_ - lo_[j]);
     }
+    scale_ = extent > 0 && extent < std::numeric_limits<double>::infinity() ? cells_ / extent : 0;
   }
   int bits() const { return bits_; }
   /// The index of x's cell (x in the box), counted from the curve's other
@@ -194,7 +202,7 @@ class Hilbert_grid {
   std::uint64_t index(const std::array<double, D>& x, bool backwards) const {
     std::array<std::uint32_t, D> cell;
     for (int j = 0; j < D; ++j) {
-      double t = (x[j] * unit_[j] - lo_[j]) * scale_[j];
+      double t = (x[j] * unit_ - lo_[j]) * scale_;
       t = t < 0 || !(t == t) ? 0 : t > cells_ ? cells_ : t;  // rounding at the box's ends; tiny extents (scale ∞)
       cell[j] = static_cast<std::uint32_t>(t);
     }
@@ -203,7 +211,8 @@ class Hilbert_grid {
   }
 
  private:
-  std::array<double, D> unit_, lo_, scale_;
+  std::array<double, D> lo_;
+  double unit_ = 1, scale_ = 0;
   int bits_;
   double cells_;
 };

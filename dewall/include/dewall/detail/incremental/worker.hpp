@@ -22,6 +22,7 @@ struct Incremental_statistics {
   std::size_t zoned_points = 0;   // points a zone inserted (Zoned_insertion)
   std::size_t zone_rounds = 0;    // rounds whose zones ran (Zoned_insertion)
   std::size_t near_cut_points = 0;  // waits untried beside the cut (near_cut), summed over rounds
+  std::size_t zone_failures = 0;  // tries of a zone that failed (the walk or the cavity met the other zone)
   std::size_t hull_starts = 0;    // 2D: cavities started on a hull edge found along the hull
   std::size_t semi_static_first_windows = 0;  // 3D: windows of sphere tests with the semi-static bound first (choose_filter_order)
   Incremental_statistics& operator+=(const Incremental_statistics& o) {
@@ -33,6 +34,7 @@ struct Incremental_statistics {
     zoned_points += o.zoned_points;
     zone_rounds += o.zone_rounds;
     near_cut_points += o.near_cut_points;
+    zone_failures += o.zone_failures;
     semi_static_first_windows += o.semi_static_first_windows;
     return *this;
   }

@@ -241,11 +241,16 @@ class Zoned_insertion {
   void insert_zone(Worker& w, const std::vector<Index>& points, const std::vector<std::size_t>& hints) {
     w.last = Engine::no_cell;
     w.gave_up = false;
+    // Until the zone's first walk, the first hint there is (when the first
+    // points have none, each would fail for want of a start: on surface
+    // samples often enough that the zone gave up).
     std::size_t hint = Engine::no_cell;
+    for (std::size_t h = 0; h < hints.size() && hint == Engine::no_cell; ++h) hint = hints[h];
     const bool patient = points.size() >= patient_zone_points;
     std::size_t tried = 0, failed = 0;  // the zone's tries (near_cut's points are none) and failures
     for (std::size_t k = 0; k < points.size(); ++k) {
-      if (k % hint_spacing == 0) hint = hints[k / hint_spacing];
+      if (k % hint_spacing == 0 && (w.last != Engine::no_cell || hints[k / hint_spacing] != Engine::no_cell))
+        hint = hints[k / hint_spacing];
       const Index v = points[k];
       const bool trying = !w.out_of_slots && !w.gave_up;
       const bool near = trying && near_cut(v);
@@ -255,6 +260,7 @@ class Zoned_insertion {
       w.stats.near_cut_points += near;
       // Running out of slots is no failure of the zone's (its points wait for the next round).
       failed += trying && !near && !inserted && !w.out_of_slots;
+      w.stats.zone_failures += trying && !near && !inserted;
       if (gives_up(tried, failed, patient)) w.gave_up = true;
       if (dt_.progress_ && (k + 1) % Engine::progress_stride == 0) dt_.progress_->advance(Engine::progress_stride);
     }
