@@ -178,7 +178,7 @@ const bool registered = register_command({"certify", command_certify,
     "      report. Chosen by itself when a .dwsx file's simplices would take more\n"
     "      than a quarter of this machine's memory.\n"
     "      --memory SIZE: bytes for the facet records of one window of vertices\n"
-    "      (K, M, G suffixes; default: half the simplices' size, 512M streaming).\n"});
+    "      (K, M, G suffixes; default: 256K per thread, 512M streaming).\n"});
 
 }  // namespace
 }  // namespace dewall::cli

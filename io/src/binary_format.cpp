@@ -49,19 +49,22 @@ std::string binary_truncated(const std::string& name, const std::string& announc
 }
 
 bool check_binary_size(std::istream& in, const std::string& name, std::uint64_t payload, const std::string& announced,
-                       const std::string& item) {
-  const auto here = in.tellg();
-  if (here == std::streampos(-1)) {
+                       const std::string& item, std::uint64_t file_size) {
+  std::uint64_t size = file_size;
+  if (size == 0) {
+    const auto here = in.tellg();
+    if (here == std::streampos(-1)) {
+      in.clear();
+      return false;
+    }
+    in.seekg(0, std::ios::end);
+    const auto end = in.tellg();
+    in.seekg(here);
+    const bool sized = end != std::streampos(-1) && in.good();
     in.clear();
-    return false;
+    if (!sized) return false;
+    size = static_cast<std::uint64_t>(end);
   }
-  in.seekg(0, std::ios::end);
-  const auto end = in.tellg();
-  in.seekg(here);
-  const bool sized = end != std::streampos(-1) && in.good();
-  in.clear();
-  if (!sized) return false;
-  const auto size = static_cast<std::uint64_t>(end);
   const std::uint64_t expected = binary_header_size + payload;
   if (size < expected) throw Parse_error(binary_truncated(name, announced, payload, size));
   if (size > expected)

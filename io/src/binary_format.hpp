@@ -32,13 +32,14 @@ void write_binary_header(std::ostream& out, const char (&magic)[4], const Binary
 Binary_header read_binary_header(std::istream& in, const std::string& name, const char (&magic)[4],
                                  const std::string& what);
 
-/// Checks the bytes left in a seekable `in` against `payload` (the header's
-/// promise, described by `announced`, e.g. "10 points of dimension 3"):
-/// \returns false when `in` cannot tell its size (a pipe); the reader then
-/// finds truncation as it reads. \throws Parse_error when the file is shorter
-/// (binary_truncated) or longer ("N bytes after the last ITEM").
+/// Checks the file's size against `payload` (the header's promise, described
+/// by `announced`, e.g. "10 points of dimension 3"): `file_size`, the whole
+/// file's bytes when the caller knows them (Input_file::size()), else what a
+/// seekable `in` tells. \returns false when neither is known (a pipe); the
+/// reader then finds truncation as it reads. \throws Parse_error when the
+/// file is shorter (binary_truncated) or longer ("N bytes after the last ITEM").
 bool check_binary_size(std::istream& in, const std::string& name, std::uint64_t payload, const std::string& announced,
-                       const std::string& item);
+                       const std::string& item, std::uint64_t file_size = 0);
 
 /// The error for a file that ends after `size` bytes of the `header + payload`
 /// that `announced` promises.

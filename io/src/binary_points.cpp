@@ -33,7 +33,7 @@ constexpr std::size_t chunk_values = std::size_t{1} << 20;
 
 }  // namespace
 
-Point_table read_binary_points(std::istream& in, const std::string& name, Progress* progress) {
+Point_table read_binary_points(std::istream& in, const std::string& name, Progress* progress, std::uint64_t file_size) {
   const auto header = detail::read_binary_header(in, name, binary_points_magic, "binary point file");
   const std::uint64_t version = header.version, dimension = header.dimension, flags = header.field12,
                       count = header.count;
@@ -49,9 +49,9 @@ Point_table read_binary_points(std::istream& in, const std::string& name, Progre
   const std::uint64_t values = count * dimension;
   const std::uint64_t expected_size = binary_points_file_size(count, static_cast<int>(dimension));
   const std::string announced = std::to_string(count) + " points of dimension " + std::to_string(dimension);
-  // A seekable stream (a file) tells its size up front: reject a wrong size
-  // before reading, and allocate once.
-  const bool sized = detail::check_binary_size(in, name, values * 8, announced, "point");
+  // A file's size is known up front: reject a wrong size before reading, and
+  // allocate once.
+  const bool sized = detail::check_binary_size(in, name, values * 8, announced, "point", file_size);
 
   Point_table t;
   t.dimension = static_cast<int>(dimension);

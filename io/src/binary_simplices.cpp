@@ -23,7 +23,7 @@ void write_binary_simplices_header(std::ostream& out, int dimension, std::uint64
                                static_cast<std::uint32_t>(index_bytes), count});
 }
 
-Binary_simplex_reader::Binary_simplex_reader(std::istream& in, std::string name, int dimension)
+Binary_simplex_reader::Binary_simplex_reader(std::istream& in, std::string name, int dimension, std::uint64_t file_size)
     : in_(in), name_(std::move(name)), k_(static_cast<std::size_t>(dimension + 1)) {
   const auto header = detail::read_binary_header(in, name_, binary_simplices_magic, "binary simplex file");
   if (header.version != binary_simplices_version)
@@ -41,7 +41,7 @@ Binary_simplex_reader::Binary_simplex_reader(std::istream& in, std::string name,
   if (known_ && count_ > (std::uint64_t{1} << 56) / row_bytes_)
     throw Parse_error(name_ + ": the header announces an impossible simplex count " + std::to_string(count_));
   announced_ = known_ ? std::to_string(count_) + " simplices of dimension " + std::to_string(dimension) : "";
-  sized_ = known_ && detail::check_binary_size(in, name_, count_ * row_bytes_, announced_, "simplex");
+  sized_ = known_ && detail::check_binary_size(in, name_, count_ * row_bytes_, announced_, "simplex", file_size);
 }
 
 std::size_t Binary_simplex_reader::read(std::span<std::uint32_t> indices) {
@@ -81,8 +81,8 @@ std::size_t Binary_simplex_reader::read(std::span<std::uint32_t> indices) {
   return got / row_bytes_;
 }
 
-Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension) {
-  Binary_simplex_reader reader(in, name, dimension);
+Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension, std::uint64_t file_size) {
+  Binary_simplex_reader reader(in, name, dimension, file_size);
   Simplex_list list;
   list.format = "binary";
   list.table.vertices_per_simplex = dimension + 1;

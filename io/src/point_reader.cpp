@@ -210,7 +210,7 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
   const std::string& name = file.name();
   // Sniffed from the first bytes, which stay in the stream for the parser.
   const auto magic = file.prefix(4);
-  if (magic == std::string_view(binary_points_magic, 4)) return read_binary_points(file.stream(), name, progress);
+  if (magic == std::string_view(binary_points_magic, 4)) return read_binary_points(file.stream(), name, progress, file.size());
   if (magic == std::string_view(binary_simplices_magic, 4))
     throw Not_points_error(name + ": holds simplices (dewall's binary .dwsx format), not points");
   const auto head = file.prefix(4096);

@@ -158,7 +158,7 @@ namespace {
 Simplex_list read_simplices_from(Input_file& file, const std::string& path, int dimension, std::size_t first_index) {
   const std::string& name = file.name();
   const auto magic = file.prefix(4);
-  if (magic == std::string_view(binary_simplices_magic, 4)) return read_binary_simplices(file.stream(), name, dimension);
+  if (magic == std::string_view(binary_simplices_magic, 4)) return read_binary_simplices(file.stream(), name, dimension, file.size());
   if (magic == std::string_view(binary_points_magic, 4))
     throw Not_simplices_error(name + ": holds points (dewall's binary .dwpt format), not simplices");
   const auto head = file.prefix(4096);
@@ -192,7 +192,7 @@ Simplex_list read_simplices_file(const std::string& path, int dimension, std::si
 Simplex_file_reader::Simplex_file_reader(const std::string& path, int dimension, std::size_t first_index)
     : file_(std::make_unique<Input_file>(path)), k_(static_cast<std::size_t>(dimension + 1)) {
   if (file_->prefix(4) == std::string_view(binary_simplices_magic, 4)) {
-    binary_ = std::make_unique<Binary_simplex_reader>(file_->stream(), file_->name(), dimension);
+    binary_ = std::make_unique<Binary_simplex_reader>(file_->stream(), file_->name(), dimension, file_->size());
     list_.format = "binary";
   } else {
     list_ = read_simplices_from(*file_, path, dimension, first_index);

@@ -123,7 +123,7 @@ TEST_CASE("first_occurrences: each point maps to the earliest equal point, -0 ==
   CHECK(first == std::vector<std::uint32_t>{0, 1, 0, 1, 4, 0});
 }
 
-TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates", "[python]") {
+TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates, in one pass or many", "[python]") {
   // Coordinates from a small set (0, ±0, 1, 2^-1074, a NaN-free mix), so most
   // points repeat an earlier one and the hash table's probe chains are long.
   const double values[] = {0.0, -0.0, 1.0, 0x1p-1074, -1.0, 3.5};
@@ -133,15 +133,35 @@ TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates", "
     for (auto& q : p)
       for (double& c : q.x) c = values[rng() % 6];
     const kernel::Filtered_kernel_d<3> k;
-    const auto first = kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
-                                                 k.approximate_coordinates_object());
     std::vector<std::uint32_t> expected(n);
     for (std::size_t i = 0; i < n; ++i) {
       std::size_t j = 0;
       while (!(p[j].x[0] == p[i].x[0] && p[j].x[1] == p[i].x[1] && p[j].x[2] == p[i].x[2])) ++j;
       expected[i] = static_cast<std::uint32_t>(j);
     }
-    CHECK(first == expected);
+    // One table, and tables so small that the points take many passes.
+    for (std::size_t max_table_bytes : {std::size_t{0}, std::size_t{64}, std::size_t{1024}}) {
+      INFO("n = " << n << ", table at most " << max_table_bytes << " bytes");
+      const auto first = kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
+                                                   k.approximate_coordinates_object(), [](std::size_t) { return false; },
+                                                   max_table_bytes);
+      CHECK(first == expected);
+    }
+    // Excluded points map to themselves and stand for no later point.
+    const auto excluded = [](std::size_t i) { return i % 3 == 0; };
+    std::vector<std::uint32_t> expected_excluding(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      std::size_t j = i;
+      if (!excluded(i))
+        for (j = 0; j < i; ++j)
+          if (!excluded(j) && p[j].x[0] == p[i].x[0] && p[j].x[1] == p[i].x[1] && p[j].x[2] == p[i].x[2]) break;
+      expected_excluding[i] = static_cast<std::uint32_t>(j);
+    }
+    for (std::size_t max_table_bytes : {std::size_t{0}, std::size_t{64}}) {
+      INFO("n = " << n << ", every third point excluded, table at most " << max_table_bytes << " bytes");
+      CHECK(kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
+                                      k.approximate_coordinates_object(), excluded, max_table_bytes) == expected_excluding);
+    }
   }
 }
 

@@ -199,6 +199,40 @@ TEST_CASE("binary simplices: truncated and foreign files are clean errors", "[fo
   CHECK_THROWS_WITH(read_binary_simplex_string(open, 2), Catch::Contains("ends inside simplex 0"));
 }
 
+TEST_CASE("binary files read by name: their size is known before they are read", "[formats]") {
+  // Files are read through a stream that cannot seek (io/src/input_file.cpp):
+  // the size comes from the file itself, so that a reader allocates once and
+  // the certifier can reserve its rows.
+  std::filesystem::create_directories("formats_test_sized");
+  const Simplex_table t{4, {0, 1, 2, 3, 1, 2, 3, 4, 2, 3, 4, 5}};
+  write_simplices_file("formats_test_sized/s.dwsx", t, 0);
+  Simplex_file_reader reader("formats_test_sized/s.dwsx", 3, 0);
+  CHECK(reader.remaining() == 3);
+  std::vector<std::uint32_t> rows(8);
+  CHECK(reader.read(rows) == 2);
+  CHECK(reader.remaining() == 1);
+  // A truncated file or one with bytes after its last row: refused before the
+  // rows are read, naming the sizes.
+  const auto bytes = binary_simplex_bytes(t);
+  for (const auto& [contents, message] :
+       {std::pair{bytes.substr(0, bytes.size() - 3), std::string("the file has " + std::to_string(bytes.size() - 3) + " bytes")},
+        std::pair{bytes + "xy", std::string("2 bytes after the last simplex")}}) {
+    std::ofstream("formats_test_sized/bad.dwsx", std::ios::binary) << contents;
+    CHECK_THROWS_WITH(Simplex_file_reader("formats_test_sized/bad.dwsx", 3, 0), Catch::Contains(message));
+  }
+  const auto points = generate_points(Point_kind::uniform, 100, 3, 8);
+  write_points_file("formats_test_sized/p.dwpt", points);
+  std::string point_bytes;
+  {
+    std::ifstream in("formats_test_sized/p.dwpt", std::ios::binary);
+    point_bytes.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  std::ofstream("formats_test_sized/short.dwpt", std::ios::binary) << point_bytes.substr(0, point_bytes.size() - 8);
+  CHECK_THROWS_WITH(read_points_file("formats_test_sized/short.dwpt"),
+                    Catch::Contains("truncated") && Catch::Contains("the file has " + std::to_string(point_bytes.size() - 8) + " bytes"));
+  std::filesystem::remove_all("formats_test_sized");
+}
+
 TEST_CASE("text points: shortest round-trip form reads back exactly", "[formats]") {
   const auto t = generate_points(Point_kind::bubbles, 500, 4, 21);
   std::ostringstream out;

@@ -217,8 +217,10 @@ class Certifier {
         if (bad_point_[i]) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }
+    // Streaming, the duplicates' table stays within the working memory too.
     first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(),
-                                       k_.approximate_coordinates_object(), [&](std::size_t i) { return bool(bad_point_[i]); });
+                                       k_.approximate_coordinates_object(), [&](std::size_t i) { return bool(bad_point_[i]); },
+                                       options_.stream ? stream_budget() : 0);
     for (std::size_t i = 0; i < n; ++i)
       if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }

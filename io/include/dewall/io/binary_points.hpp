@@ -38,8 +38,11 @@ inline constexpr std::size_t binary_points_header_size = 24;
 /// `name` is used in messages. `progress`, when given, receives the bytes read.
 /// \throws Parse_error on a wrong magic, version, flags or dimension, a
 /// truncated file (the message says how many bytes were expected and found), or
-/// bytes after the last point.
-Point_table read_binary_points(std::istream& in, const std::string& name, Progress* progress = nullptr);
+/// bytes after the last point. `file_size`: the file's bytes when the caller
+/// knows them (0: asked of `in` when it can seek): a file of known size is
+/// checked before it is read, and its points allocated once.
+Point_table read_binary_points(std::istream& in, const std::string& name, Progress* progress = nullptr,
+                               std::uint64_t file_size = 0);
 
 /// Writes `t` in the binary format; `progress`, when given, receives the bytes
 /// written. The caller checks the stream state.

@@ -52,8 +52,9 @@ inline constexpr std::size_t binary_simplices_count_offset = 16;
 class Binary_simplex_reader {
  public:
   /// Reads and checks the header from `in` (opened in binary mode), magic
-  /// included. \throws Parse_error as read_binary_simplices.
-  Binary_simplex_reader(std::istream& in, std::string name, int dimension);
+  /// included; `file_size` as for read_binary_points. \throws Parse_error as
+  /// read_binary_simplices.
+  Binary_simplex_reader(std::istream& in, std::string name, int dimension, std::uint64_t file_size = 0);
   /// Reads the next whole rows into `indices` (at most indices.size() / (D + 1),
   /// and at most 2^19 at a time: a corrupt count never makes a caller allocate
   /// more than the file has delivered); returns how many, 0 at the end.
@@ -81,6 +82,6 @@ class Binary_simplex_reader {
 /// \throws Parse_error on a wrong magic, version or index width, a dimension
 /// other than `dimension` (the points'), an index of 2^32 or more, a truncated
 /// file or bytes after the last simplex.
-Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension);
+Simplex_list read_binary_simplices(std::istream& in, const std::string& name, int dimension, std::uint64_t file_size = 0);
 
 }  // namespace dewall::io

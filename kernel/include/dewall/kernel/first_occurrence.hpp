@@ -51,14 +51,40 @@ constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
 /// doubles; a lazy exact kernel's approximations need not be); they only place
 /// points in a hash table, `compare` decides. A point for which `excluded(i)` is true
 /// (a non-finite one, say) is compared with nothing and maps to itself.
+/// `max_table_bytes` (0: no limit) bounds the hash table: above it the points
+/// are taken in passes, each the points whose hash starts with the pass's bits
+/// (equal points have equal hashes, so they meet in one pass), at the cost of
+/// hashing every point once more per pass.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
 /// Complexity: O(n) expected comparisons, one table of 2n–4n 8-byte slots (a sort
-/// of indices cost far more: docs/engines.md).
+/// of indices cost far more: docs/engines.md), or of max_table_bytes and
+/// O(n · 16n / max_table_bytes) hashes.
 template <class Point, class Compare, class Coordinates, class Excluded>
 std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Coordinates coordinates,
-                                             Excluded excluded) {
+                                             Excluded excluded, std::size_t max_table_bytes = 0) {
   const std::size_t n = points.size();
   std::vector<std::uint32_t> first(n);
+  for (std::size_t i = 0; i < n; ++i) first[i] = static_cast<std::uint32_t>(i);
+  const auto hash_of = [&](std::size_t i) { return coordinate_hash(coordinates(points[i])); };
+  // Passes: a power of two, the pass of a hash its top bits. The table of a
+  // pass is sized for the points the pass really has (counted first), so
+  // that a skewed split cannot fill it.
+  constexpr std::size_t slot_bytes = sizeof(std::uint64_t);
+  int pass_bits = 0;
+  while (max_table_bytes != 0 && pass_bits < 16 &&
+         std::bit_ceil(2 * (n >> pass_bits) + 2) * slot_bytes > max_table_bytes)
+    ++pass_bits;
+  const std::size_t passes = std::size_t{1} << pass_bits;
+  const auto pass_of = [&](std::uint64_t hash) {
+    return pass_bits == 0 ? std::size_t{0} : static_cast<std::size_t>(hash >> (64 - pass_bits));
+  };
+  std::vector<std::size_t> in_pass(passes, 0);
+  if (passes == 1) {
+    in_pass[0] = n;
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      if (!excluded(i)) ++in_pass[pass_of(hash_of(i))];
+  }
   // Open addressing with linear probing. A slot holds, in its low 32 bits, 1 +
   // the index of the first occurrence of its point (0: empty), and in its
   // high 32 bits the high half of that point's hash: a probe compares points
@@ -66,37 +92,39 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
   // random (2D uniform 10^6: 36 % of the samples stalled on that read, and
   // the tags took the check from 20 to 13.5 ms). Points are entered in input
   // order, so the first equal point a probe meets is the earliest.
-  const std::size_t slots = std::bit_ceil(2 * n + 2), mask = slots - 1;
+  const std::size_t slots = std::bit_ceil(2 * *std::max_element(in_pass.begin(), in_pass.end()) + 2), mask = slots - 1;
   constexpr std::uint64_t index_bits = 0xffffffffu, tag_bits = ~index_bits;
-  std::vector<std::uint64_t> table(slots, 0);
-  const auto hash_of = [&](std::size_t i) { return coordinate_hash(coordinates(points[i])); };
+  std::vector<std::uint64_t> table(slots);
   // The slots are random, each a cache miss: they are hashed and asked for
   // `ahead` points in advance (measured: the probes were most of the time).
   constexpr std::size_t ahead = 16;
   std::array<std::uint64_t, ahead> upcoming{};
-  for (std::size_t i = 0; i < std::min(n, ahead); ++i) {
-    upcoming[i] = hash_of(i);
-    __builtin_prefetch(&table[upcoming[i] & mask]);
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint64_t hash = upcoming[i % ahead];
-    if (i + ahead < n) {
-      upcoming[i % ahead] = hash_of(i + ahead);
-      __builtin_prefetch(&table[upcoming[i % ahead] & mask]);
+  for (std::size_t pass = 0; pass < passes; ++pass) {
+    if (in_pass[pass] == 0) continue;
+    std::fill(table.begin(), table.end(), 0);
+    for (std::size_t i = 0; i < std::min(n, ahead); ++i) {
+      upcoming[i] = hash_of(i);
+      __builtin_prefetch(&table[upcoming[i] & mask]);
     }
-    first[i] = static_cast<std::uint32_t>(i);
-    if (excluded(i)) continue;
-    const std::uint64_t tag = hash & tag_bits;
-    for (std::size_t s = hash & mask;; s = (s + 1) & mask) {
-      if (table[s] == 0) {
-        table[s] = tag | (i + 1);
-        break;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint64_t hash = upcoming[i % ahead];
+      if (i + ahead < n) {
+        upcoming[i % ahead] = hash_of(i + ahead);
+        if (pass_of(upcoming[i % ahead]) == pass) __builtin_prefetch(&table[upcoming[i % ahead] & mask]);
       }
-      if ((table[s] & tag_bits) != tag) continue;  // a different point: its hash differs
-      const auto j = static_cast<std::uint32_t>((table[s] & index_bits) - 1);
-      if (compare(points[j], points[i]) == EQUAL) {
-        first[i] = j;
-        break;
+      if (pass_of(hash) != pass || excluded(i)) continue;
+      const std::uint64_t tag = hash & tag_bits;
+      for (std::size_t s = hash & mask;; s = (s + 1) & mask) {
+        if (table[s] == 0) {
+          table[s] = tag | (i + 1);
+          break;
+        }
+        if ((table[s] & tag_bits) != tag) continue;  // a different point: its hash differs
+        const auto j = static_cast<std::uint32_t>((table[s] & index_bits) - 1);
+        if (compare(points[j], points[i]) == EQUAL) {
+          first[i] = j;
+          break;
+        }
       }
     }
   }
