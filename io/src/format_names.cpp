@@ -20,7 +20,7 @@ struct Extension {
   std::string_view description;  // what a file of this name holds, for messages
 };
 
-constexpr std::array<Extension, 15> extensions = {{
+constexpr std::array<Extension, 16> extensions = {{
     {".dwpt", Named_format::binary_points, "binary points (dewall's .dwpt)"},
     {".dwsx", Named_format::binary_simplices, "binary simplices (dewall's .dwsx)"},
     {".node", Named_format::tetgen_node, "TetGen points (.node)"},
@@ -32,6 +32,7 @@ constexpr std::array<Extension, 15> extensions = {{
     {".stl", Named_format::foreign, "an STL mesh"},
     {".msh", Named_format::gmsh, "a gmsh mesh"},
     {".pcd", Named_format::pcd, "a PCL point cloud"},
+    {".cgal", Named_format::cgal, "a CGAL triangulation (operator<<)"},
     {".vtu", Named_format::foreign, "an XML VTK grid"},
     {".vtp", Named_format::foreign, "an XML VTK polydata"},
     {".svg", Named_format::foreign, "an SVG picture"},
@@ -47,7 +48,7 @@ const Extension* extension_of(std::string_view path) {
 /// True for the formats dewall reads but never writes.
 bool read_only(Named_format f) {
   return f == Named_format::ply || f == Named_format::off || f == Named_format::obj || f == Named_format::pcd ||
-         f == Named_format::foreign;
+         f == Named_format::cgal || f == Named_format::foreign;
 }
 
 /// The refusal of `path` (whose extension is `e`) for writing `what`; `use` lists the names that work.

@@ -14,6 +14,7 @@
 #include <ostream>
 #include <vector>
 
+#include "dewall/io/dimensions.hpp"
 #include "dewall/io/quote.hpp"
 #include "text_lines.hpp"
 #include "xyz_table.hpp"
@@ -659,6 +660,135 @@ Simplex_table read_msh_simplices(std::istream& in, const std::string& name, int 
   if (mesh.elements.size() == 0)
     throw Parse_error(name + ": no " + (dimension == 2 ? "triangles" : "tetrahedra") + " in the gmsh mesh");
   return std::move(mesh.elements);
+}
+
+// ---------------------------------------------------------------- CGAL
+
+Cgal_triangulation read_cgal_triangulation(std::istream& in, const std::string& name) {
+  detail::Line_source source(in);
+  std::string line;
+  std::vector<std::string_view> t;
+  const auto next = [&](const char* what) {
+    do {
+      if (!source.next(line)) throw Parse_error(name + ": truncated: the file ends in the " + what);
+      t = tokens_of(line);
+    } while (t.empty());
+  };
+  const auto fail = [&](const std::string& what) { return Parse_error(where(name, source.number()) + what); };
+  const auto number = [&](std::size_t i, const char* what) { return count_of(t.at(i), name, source.number(), what); };
+  const auto full_dimensional = [&](std::size_t dimension, std::size_t ambient) {
+    if (dimension != ambient)
+      throw Parse_error(name + ": the triangulation has dimension " + std::to_string(dimension) + ", its points " +
+                        std::to_string(ambient) + ": it is not full-dimensional, and has no cell to certify");
+  };
+
+  // The header: "n m 2" (Triangulation_2, n counting the infinite vertex), or
+  // the dimension and then the number of finite vertices (3D and dD).
+  next("header");
+  std::size_t dimension = 0, finite = 0, cell_count = 0;
+  bool two = false;
+  if (t.size() == 3) {
+    two = true;
+    const std::size_t n = number(0, "vertex count");
+    cell_count = number(1, "face count");
+    dimension = number(2, "dimension");
+    full_dimensional(dimension, 2);
+    if (n < 2) throw fail("no points");
+    finite = n - 1;
+  } else if (t.size() == 1) {
+    dimension = number(0, "dimension");
+    next("header");
+    if (t.size() != 1) throw fail("expected the number of vertices");
+    finite = number(0, "vertex count");
+    if (finite == 0) throw fail("no points");
+  } else {
+    throw fail("not a CGAL triangulation: the first line holds 'n m 2' (2D) or the dimension (3D, dD)");
+  }
+
+  // The vertex lines: Triangulation_2 and _3 write the finite points; the dD
+  // Triangulation first its infinite vertex ("0", or its dimension and
+  // zeros), then each point after its dimension. The line after the first
+  // `finite` says which: a lone count (the cells) or one more point.
+  std::vector<double> first, values;
+  std::size_t width = 0;  // values on every vertex line after the first
+  const auto vertex_line = [&](std::vector<double>& into) {
+    next("vertices");
+    for (std::string_view token : t) into.push_back(detail::parse_double(token, name, source.number()));
+    return t.size();
+  };
+  const std::size_t first_width = vertex_line(first);
+  for (std::size_t i = 1; i < finite; ++i) {
+    const std::size_t w = vertex_line(values);
+    if (width == 0) width = w;
+    if (w != width) throw fail("a vertex of " + std::to_string(w) + " values after vertices of " + std::to_string(width));
+  }
+  if (!two) next("cells");
+  Point_table points;
+  if (two || t.size() == 1) {
+    points.dimension = two ? 2 : 3;
+    if (!two) full_dimensional(dimension, 3);
+    const auto d = static_cast<std::size_t>(points.dimension);
+    if (first_width != d || (width != 0 && width != d))
+      throw Parse_error(name + ": expected points of " + std::to_string(d) + " coordinates (a vertex or cell base that writes more is not supported)");
+    points.coordinates = std::move(first);
+    points.coordinates.insert(points.coordinates.end(), values.begin(), values.end());
+  } else {
+    // dD: the line just read is the last point.
+    const std::size_t w = t.size();
+    std::vector<double> last;
+    for (std::string_view token : t) last.push_back(detail::parse_double(token, name, source.number()));
+    if (width == 0) width = w;
+    if (w != width || width < 2) throw fail("a vertex of " + std::to_string(w) + " values after vertices of " + std::to_string(width));
+    const std::size_t d = width - 1;
+    const bool infinite_ok = (first_width == 1 && first[0] == 0) || (first_width == width && first[0] == double(d));
+    if (!infinite_ok) throw Parse_error(name + ": not a CGAL triangulation: its infinite vertex is neither '0' nor '" + std::to_string(d) + " 0 …'");
+    if (!is_supported_dimension(d))
+      throw Parse_error(name + ": dimension " + std::to_string(d) + " is not supported (" + dimension_range() + ")");
+    full_dimensional(dimension, d);
+    values.insert(values.end(), last.begin(), last.end());
+    points.dimension = static_cast<int>(d);
+    points.coordinates.reserve(finite * d);
+    for (std::size_t i = 0; i < values.size(); i += width) {
+      if (values[i] != double(d)) throw Parse_error(name + ": a point written after dimension " + std::to_string(values[i]) + ", not " + std::to_string(d));
+      points.coordinates.insert(points.coordinates.end(), values.begin() + static_cast<std::ptrdiff_t>(i + 1),
+                                values.begin() + static_cast<std::ptrdiff_t>(i + width));
+    }
+    next("cells");
+  }
+
+  // The cells: vertex 0 is the infinite vertex, v > 0 finite point v − 1;
+  // then as many rows of neighbours, checked for their shape only.
+  if (!two) {
+    if (t.size() != 1) throw fail("expected the number of cells");
+    cell_count = number(0, "cell count");
+  }
+  const auto k = static_cast<std::size_t>(points.dimension) + 1;
+  Cgal_triangulation result;
+  result.cells.vertices_per_simplex = static_cast<int>(k);
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    next("cells");
+    if (t.size() != k) throw fail("expected a cell of " + std::to_string(k) + " vertex numbers (a cell base that writes more is not supported)");
+    std::array<std::uint32_t, 7> row{};
+    bool finite_cell = true;
+    for (std::size_t i = 0; i < k; ++i) {
+      const std::size_t v = number(i, "vertex number");
+      if (v > finite) throw fail("vertex " + std::to_string(v) + " of a cell is not one of the " + std::to_string(finite + 1) + " vertices");
+      finite_cell = finite_cell && v != 0;
+      row[i] = static_cast<std::uint32_t>(v - (v != 0));
+    }
+    if (finite_cell) result.cells.indices.insert(result.cells.indices.end(), row.begin(), row.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    next("neighbours of the cells");
+    if (t.size() != k) throw fail("expected the " + std::to_string(k) + " neighbours of a cell");
+    for (std::size_t i = 0; i < k; ++i)
+      if (number(i, "cell number") >= cell_count) throw fail("neighbour " + std::string(t[i]) + " is not one of the " + std::to_string(cell_count) + " cells");
+  }
+  while (source.next(line))
+    if (!tokens_of(line).empty()) throw fail("more lines after the triangulation's cells and neighbours");
+  if (result.cells.size() == 0) throw Parse_error(name + ": the triangulation has no finite cell");
+  result.points = std::move(points);
+  return result;
 }
 
 void write_msh_triangulation(std::ostream& out, const Point_table& points, const Simplex_table& t) {

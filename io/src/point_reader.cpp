@@ -227,7 +227,9 @@ Point_table read_points_file(const std::string& path, Progress* progress) {
   const bool msh = !vtk && (is_msh_header(head) || named == Named_format::gmsh);
   const bool pcd = !vtk && !msh && !ply && (is_pcd_header(head) || named == Named_format::pcd);
   if (progress) progress->phase("reading " + name, file.size());
+  const bool cgal = !vtk && named == Named_format::cgal;
   const Point_table t = vtk    ? read_vtk_points(file.stream(), name)
+                        : cgal ? read_cgal_triangulation(file.stream(), name).points
                         : msh  ? read_msh_points(file.stream(), name)
                         : pcd  ? read_pcd_points(file.stream(), name)
                         : ply  ? read_ply_points(file.stream(), name)

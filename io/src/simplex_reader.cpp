@@ -175,6 +175,15 @@ Simplex_list read_simplices_from(Input_file& file, const std::string& path, int 
     list.table = read_msh_simplices(file.stream(), name, dimension);
     return list;
   }
+  if (named == Named_format::cgal) {
+    Simplex_list list;
+    list.format = "cgal";
+    list.table = read_cgal_triangulation(file.stream(), name).cells;
+    if (list.table.vertices_per_simplex != dimension + 1)
+      throw Parse_error(name + ": a CGAL triangulation of dimension " + std::to_string(list.table.vertices_per_simplex - 1) +
+                        ", the points are of dimension " + std::to_string(dimension));
+    return list;
+  }
   if (named == Named_format::tetgen_node)
     throw Not_simplices_error(name + ": the name says TetGen points (.node), not simplices");
   const bool ele = named == Named_format::tetgen_ele ||

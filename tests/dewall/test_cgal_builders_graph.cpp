@@ -21,6 +21,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
 #include <iterator>
 #include <map>
 #include <random>
@@ -32,6 +35,8 @@
 #include "dewall/cgal/delaunay_triangulation_3.hpp"
 #include "dewall/cgal/delaunay_triangulation_d.hpp"
 #include "dewall/certify/cgal.hpp"
+#include "dewall/io/point_reader.hpp"
+#include "dewall/io/simplex_reader.hpp"
 #include "support/dewall_point_sets.hpp"
 
 using dewall::kernel::Point_d;
@@ -373,5 +378,65 @@ TEST_CASE("dewall::cgal::certify: CGAL's triangulations certified in place, flip
     std::vector<K::Point_3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
     const DT3 dt(points.begin(), points.end());
     CHECK_THROWS_AS(dewall::cgal::certify(dt), std::invalid_argument);
+  }
+}
+
+// CGAL's operator<< files (io/src/mesh_formats.cpp, read by the name .cgal):
+// the points and finite cells CGAL wrote, certified canonical; a flipped
+// triangulation written so is rejected.
+namespace {
+template <int D, class DT>
+dewall::certify::Report certify_cgal_file(const DT& dt, const std::string& path) {
+  {
+    std::ofstream out(path);
+    out << std::setprecision(17) << dt;
+  }
+  const auto points = dewall::io::read_points_file(path);
+  const auto cells = dewall::io::read_simplices_file(path, points.dimension, 0);
+  REQUIRE(points.dimension == D);
+  CHECK(points.size() == dt.number_of_vertices());
+  std::vector<Point_d<D>> p(points.size());
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (int j = 0; j < D; ++j) p[i].x[static_cast<std::size_t>(j)] = points.coordinates[i * D + static_cast<std::size_t>(j)];
+  std::vector<std::array<std::uint32_t, D + 1>> rows(cells.table.size());
+  std::copy(cells.table.indices.begin(), cells.table.indices.end(), &rows[0][0]);
+  std::filesystem::remove(path);
+  return dewall::certify::certify<dewall::kernel::Filtered_kernel_d<D>>(p, rows);
+}
+}  // namespace
+
+TEST_CASE("CGAL's triangulation files (operator<<) read and certified, 2D, 3D, dD", "[cgal][certify][formats]") {
+  std::mt19937_64 rng(612);
+  {
+    std::vector<K::Point_2> points;
+    for (const auto& p : dewall::test::uniform<2>(300, rng)) points.push_back(to_point<K::Point_2>(p));
+    DT2 dt(points.begin(), points.end());
+    const auto report = certify_cgal_file<2>(dt, "cgal_file_2.cgal");
+    CHECK((report.delaunay && report.canonical));
+    CHECK(report.simplices == dt.number_of_faces());
+  }
+  {
+    std::vector<K::Point_3> points;
+    for (const auto& p : dewall::test::uniform<3>(300, rng)) points.push_back(to_point<K::Point_3>(p));
+    DT3 dt(points.begin(), points.end());
+    const auto report = certify_cgal_file<3>(dt, "cgal_file_3.cgal");
+    CHECK((report.delaunay && report.canonical));
+    CHECK(report.simplices == dt.number_of_finite_cells());
+    bool flipped = false;
+    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end() && !flipped; ++c)
+      for (int i = 0; i < 4 && !flipped; ++i)
+        if (!dt.is_infinite(c->neighbor(i))) flipped = dt.flip(c, i);
+    REQUIRE(flipped);
+    const auto rejected = certify_cgal_file<3>(dt, "cgal_file_3_flipped.cgal");
+    CHECK_FALSE(rejected.delaunay);
+  }
+  {
+    std::vector<Kd4::Point_d> points;
+    for (const auto& p : dewall::test::uniform<4>(80, rng)) points.push_back(to_point<Kd4::Point_d>(p));
+    CGAL::Delaunay_triangulation<Kd4> dt(4);
+    dt.insert(points.begin(), points.end());
+    const auto report = certify_cgal_file<4>(dt, "cgal_file_4.cgal");
+    CHECK((report.delaunay && report.canonical));
+    CHECK(report.simplices == dt.number_of_finite_full_cells());
   }
 }

@@ -22,6 +22,7 @@
 #include "dewall/dewall.hpp"
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
+#include "dewall/io/mesh_formats.hpp"
 #include "dewall/io/output_file.hpp"
 #include "dewall/io/point_generators.hpp"
 #include "dewall/io/point_reader.hpp"
@@ -546,4 +547,42 @@ TEST_CASE("command line: draw", "[cli][formats]") {
     REQUIRE(cli("generate uniform 20 --dim 3 -o p3.txt").status == 0);
     CHECK(cli("draw p3.txt --walls -o x.svg").status == 2);
   }
+}
+
+TEST_CASE("CGAL triangulation files: the three layouts, and clean errors", "[formats]") {
+  const auto read = [](const std::string& text) {
+    std::istringstream in(text);
+    return read_cgal_triangulation(in, "t.cgal");
+  };
+  // Triangulation_2: "n m 2" (n with the infinite vertex 0), faces, neighbours.
+  const std::string two = "4 4 2\n0 0\n1 0\n0 1\n\n1 2 3\n0 3 2\n0 1 3\n0 2 1\n\n1 2 3\n0 3 2\n0 1 3\n0 2 1\n";
+  const auto t2 = read(two);
+  CHECK(t2.points.dimension == 2);
+  CHECK(t2.points.coordinates == std::vector<double>{0, 0, 1, 0, 0, 1});
+  CHECK(t2.cells.indices == std::vector<std::uint32_t>{0, 1, 2});
+  // Triangulation_3: dimension, finite count, points, cells with vertex 0 infinite.
+  const std::string three =
+      "3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n5\n1 2 3 4\n0 2 3 4\n0 1 3 4\n0 1 2 4\n0 1 2 3\n"
+      "1 2 3 4\n0 2 3 4\n0 1 3 4\n0 1 2 4\n0 1 2 3\n";
+  const auto t3 = read(three);
+  CHECK(t3.points.dimension == 3);
+  CHECK(t3.points.size() == 4);
+  CHECK(t3.cells.indices == std::vector<std::uint32_t>{0, 1, 2, 3});
+  // dD: the infinite vertex first ("0" or "D 0 … 0"), each point after its dimension.
+  for (const std::string infinite : {"0", "3 0 0 0"}) {
+    const std::string dd = "3\n4\n" + infinite + "\n3 0 0 0\n3 1 0 0\n3 0 1 0\n3 0 0 1\n\n2\n1 2 3 4\n0 2 3 4\n1 1 1 1\n0 0 0 0\n";
+    const auto t = read(dd);
+    CHECK(t.points.dimension == 3);
+    CHECK(t.points.coordinates == std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1});
+    CHECK(t.cells.indices == std::vector<std::uint32_t>{0, 1, 2, 3});
+  }
+  CHECK_THROWS_WITH(read("2\n3\n0 0 0\n1 0 0\n0 1 0\n1\n1 2 3\n0 0 0\n"), Catch::Contains("not full-dimensional"));
+  CHECK_THROWS_WITH(read("4 1 1\n0\n1\n2\n"), Catch::Contains("not full-dimensional"));
+  CHECK_THROWS_WITH(read("3\n4\n0 0 0\n1 0 0\n"), Catch::Contains("truncated"));
+  CHECK_THROWS_WITH(read(three.substr(0, three.rfind("1 2 3 4"))), Catch::Contains("truncated"));
+  CHECK_THROWS_WITH(read("3\n4\n0 0 0 7\n1 0 0 7\n0 1 0 7\n0 0 1 7\n1\n"), Catch::Contains("not supported"));
+  CHECK_THROWS_WITH(read("3\n4\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1\n1 2 3 9\n0 0 0 0\n"), Catch::Contains("vertex 9"));
+  CHECK_THROWS_WITH(read(three + "1 2 3 4\n"), Catch::Contains("more lines"));
+  CHECK_THROWS_WITH(read("3\n4\n0 0 0\n1 x 0\n"), Catch::Contains("not a number"));
+  CHECK_THROWS_WITH(read("1 2\n"), Catch::Contains("not a CGAL triangulation"));
 }

@@ -27,6 +27,7 @@ enum class Named_format {
   off,               ///< .off (points; read, not written)
   obj,               ///< .obj (points; read, not written)
   pcd,               ///< .pcd (points; read, not written)
+  cgal,              ///< .cgal (CGAL's operator<< of a triangulation; read, not written)
   foreign,           ///< a known format dewall neither reads nor writes (.stl, .vtu, …)
 };
 

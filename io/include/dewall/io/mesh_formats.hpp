@@ -72,6 +72,26 @@ Point_table read_pcd_points(std::istream& in, const std::string& name);
 /// statement VERSION.
 bool is_pcd_header(std::string_view head);
 
+/// A triangulation as CGAL's operator<< writes it in ASCII mode (no header or
+/// magic word: recognised by the name `.cgal`): CGAL::Delaunay_triangulation_2
+/// ("n m 2", the n − 1 finite points, m faces, m neighbour rows),
+/// Delaunay_triangulation_3 ("3", n, the n points, m, m cells, m neighbour
+/// rows) or the dD Delaunay_triangulation ("d", n, the infinite vertex, the n
+/// points each after its dimension, m, m full cells, m neighbour rows); vertex
+/// 0 is the infinite vertex, 1 … the finite points in the order written.
+/// Coordinates are read as written: CGAL writes them with the stream's
+/// precision, so a file written without `std::setprecision(17)` holds rounded
+/// points (certified as such). Vertex and cell bases that write more (an
+/// info) are refused by the count of values on a line.
+struct Cgal_triangulation {
+  Point_table points;
+  Simplex_table cells;  ///< the finite cells, 0-based indices into points
+};
+/// \throws Parse_error naming the file and line: a triangulation that is not
+/// full-dimensional (its dimension below its points'), binary files (a
+/// non-number), wrong counts, an index out of range, or a truncated file.
+Cgal_triangulation read_cgal_triangulation(std::istream& in, const std::string& name);
+
 /// True when `head` starts as a gmsh mesh ("$MeshFormat").
 bool is_msh_header(std::string_view head);
 
