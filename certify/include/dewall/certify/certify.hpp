@@ -96,6 +96,7 @@
 #include "dewall/kernel/first_occurrence.hpp"
 #include "dewall/kernel/floating_point.hpp"
 #include "dewall/kernel/point.hpp"
+#include "dewall/kernel/static_filter.hpp"
 
 namespace dewall::certify::detail {
 
@@ -128,6 +129,7 @@ class Certifier {
     report_.dimension = D;
     report_.points = points_.size();
     check_points();
+    make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
     read_rows(source);
     if (!stop()) check_vertices();
@@ -782,7 +784,7 @@ class Certifier {
     const Point* s1 = s[1];
     s[0] = positive ? s0 : s1;
     s[1] = positive ? s1 : s0;
-    const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
+    const kernel::Oriented_side side = sphere_side(s);
     const auto witness = [&](Rule rule) {
       return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = input_number(b)};
     };
@@ -794,6 +796,41 @@ class Certifier {
         if (options_.all || out.notes.empty()) out.notes.push_back(witness(Rule::not_canonical));
         else if (renumbered() && face() < out.notes[0].face) out.notes[0] = witness(Rule::not_canonical);
       }
+    }
+  }
+
+  /// The project's kernel, whose filters the static one stands in front of.
+  static constexpr bool has_static_filter = std::is_same_v<K, kernel::Filtered_kernel_d<D>> && kernel::Static_filter_d<D>::available;
+
+  /// The box of the finite points, for the static filter.
+  void make_static_filter() {
+    if constexpr (has_static_filter) {
+      std::array<double, D> lo, hi;
+      lo.fill(INFINITY);
+      hi.fill(-INFINITY);
+      for (std::size_t i = 0; i < points_.size(); ++i) {
+        if (bad_point_[i]) continue;
+        for (std::size_t j = 0; j < D; ++j) {
+          lo[j] = std::min(lo[j], points_[i].x[j]);
+          hi[j] = std::max(hi[j], points_[i].x[j]);
+        }
+      }
+      if (lo[0] <= hi[0]) static_filter_ = kernel::Static_filter_d<D>(lo, hi);
+    }
+  }
+
+  /// The unperturbed sphere test. With the project's kernel, through the
+  /// static filter over the points' box, in 3D its semi-static bound first
+  /// (as the triangulator's cavity search): the same sign as the kernel's own
+  /// cascade, which it falls back on, without that cascade's call and its
+  /// checks of each call's columns against the filter's domain (the box has
+  /// passed them once).
+  kernel::Oriented_side sphere_side(const std::array<const Point*, D + 2>& s) const {
+    if constexpr (has_static_filter) {
+      std::uint32_t left = 0;
+      return static_cast<kernel::Oriented_side>(static_filter_.template side_of_oriented_sphere_sign<D == 3>(s, left));
+    } else {
+      return k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     }
   }
 
@@ -901,6 +938,7 @@ class Certifier {
   Report report_;
   std::vector<Violation> fatal_, facet_fatal_, delaunay_, notes_;
   std::vector<bool> bad_point_;
+  kernel::Static_filter_d<D> static_filter_;  // over the finite points' box (never decides until made)
   std::vector<std::uint32_t> first_;
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
   std::vector<Point> work_points_;
