@@ -393,7 +393,7 @@ class Certifier {
       const Cell s = sort_row(w).v;
       for (std::size_t i = 0; i < D; ++i) fast = fast && s[i] != s[i + 1];
       if (fast) {
-        const kernel::Sign o = orientation_(at(work_, s));
+        const kernel::Sign o = row_orientation(at(work_, s));
         if (o == kernel::ZERO) {
           fatal.push_back({.rule = Rule::degenerate_simplex, .simplex = r});
           return std::nullopt;
@@ -422,7 +422,7 @@ class Certifier {
     }
     if (!ok) return std::nullopt;
     const Cell s = to_work_.empty() ? sorted : sort_row(w).v;
-    const kernel::Sign o = orientation_(at(work_, s));
+    const kernel::Sign o = row_orientation(at(work_, s));
     if (o == kernel::ZERO) {
       fatal.push_back({.rule = Rule::degenerate_simplex, .simplex = r});
       return std::nullopt;
@@ -832,6 +832,15 @@ class Certifier {
     } else {
       return k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     }
+  }
+
+  /// A row's orientation: with the project's kernel the static filter's box
+  /// bound first (a simplex is small against the box: it decides nearly every
+  /// row), then the kernel's cascade.
+  kernel::Sign row_orientation(const Cell_points& p) const {
+    if constexpr (has_static_filter)
+      if (const auto sign = static_filter_.orientation(p)) return *sign;
+    return orientation_(p);
   }
 
   /// The cores this process may run on: its affinity mask (taskset, a
