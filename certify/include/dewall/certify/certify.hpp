@@ -318,18 +318,18 @@ class Certifier {
   /// there; an index out of range: r mod parts).
   std::pair<bool, bool> share_of_row(const Cell& c, std::size_t r) const {
     if (!sharing_) return {true, true};
-    std::uint32_t smallest = std::numeric_limits<std::uint32_t>::max();
     bool any = false;
     for (std::uint32_t v : c) {
       if (v >= points_.size()) {
         const bool own = r % share_.parts == share_.part;
         return {own, own};
       }
-      const std::uint32_t w = work_number(v);
-      smallest = std::min(smallest, w);
-      any = any || owns_vertex(w);
+      any = any || mine_[v];
     }
-    return {any, owns_vertex(smallest)};
+    if (!any) return {false, false};
+    std::uint32_t smallest = std::numeric_limits<std::uint32_t>::max();
+    for (std::uint32_t v : c) smallest = std::min(smallest, work_number(v));
+    return {true, owns_vertex(smallest)};
   }
   /// Whether the facet (smallest vertex v, the others `rest`, in the numbers of
   /// the walk) is this share's: its smallest vertex in the certifier's numbers is.
@@ -450,8 +450,14 @@ class Certifier {
             std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 64, 1.0, 512.0)));
         buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
         encoded.resize(block_rows);
+      } else if (sharing_) {
+        encoded.resize(block_rows);  // the share's rows are then kept, with their numbers
       } else if (const std::size_t m = source.remaining(); m != npos) {
         rows_.reserve(m);
+      }
+      if (sharing_) {
+        mine_.assign(n, 0);
+        for (std::size_t i = 0; i < n; ++i) mine_[i] = owns_vertex(work_number(static_cast<std::uint32_t>(i)));
       }
     }
     std::optional<Witness_point<K>> witness;
@@ -473,7 +479,7 @@ class Certifier {
         }
       }
       Cell* out = encoded.data();
-      if (!options_.stream) {
+      if (!options_.stream && !sharing_) {
         rows_.resize(r0 + k);
         out = rows_.data() + r0;
       }
@@ -492,18 +498,22 @@ class Certifier {
         for (std::size_t i = a; i < b; ++i) {
           out[i] = invalid_row<D + 1>();
           if (!options_.all && !res.fatal.empty()) continue;
+          // The rows come in order, their points at random: ask for them a few
+          // rows ahead (a share: the points of its range).
+          if (i + 8 < b)
+            for (std::uint32_t v : in[i + 8])
+              if (v < n && (!sharing_ || mine_[v])) prefetch(work_number(v));
+          if (!to_work_.empty() && i + 16 < b)
+            for (std::uint32_t v : in[i + 16])
+              if (v < n) __builtin_prefetch(sharing_ ? static_cast<const void*>(&mine_[v]) : &to_work_[v]);
+          if (sharing_ && !to_work_.empty() && i + 12 < b)
+            for (std::uint32_t v : in[i + 12])
+              if (v < n && mine_[v]) __builtin_prefetch(&to_work_[v]);
           // A share checks the rows with a vertex in its range (every share
           // decides a row's validity alike) and reports those it owns.
           const auto [relevant, owned] = share_of_row(in[i], r0 + i);
           if (!relevant) continue;
           others.clear();
-          // The rows come in order, their points at random: ask for them a few rows ahead.
-          if (i + 8 < b)
-            for (std::uint32_t v : in[i + 8])
-              if (v < n) prefetch(work_number(v));
-          if (!to_work_.empty() && i + 16 < b)
-            for (std::uint32_t v : in[i + 16])
-              if (v < n) __builtin_prefetch(&to_work_[v]);
           const auto s = checked_simplex(in[i], r0 + i, owned ? res.fatal : others);
           if (!s) continue;
           out[i] = encode_row(s->sorted, s->positive);
@@ -522,6 +532,12 @@ class Certifier {
         for (Violation& v : res.fatal) fail(std::move(v));
         covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
       }
+      if (sharing_ && !options_.stream && !stop())
+        for (std::size_t i = 0; i < k; ++i) {
+          if (!is_valid_row(out[i])) continue;
+          rows_.push_back(out[i]);
+          row_of_.push_back(r0 + i);
+        }
       if (options_.stream && !stop())
         for (std::size_t i = 0; i < k; ++i) {
           if (!is_valid_row(out[i])) continue;
@@ -532,6 +548,7 @@ class Certifier {
     }
     report_.simplices = r0;
     std::vector<std::uint8_t>().swap(usable_);
+    std::vector<std::uint8_t>().swap(mine_);
     if (buckets_) buckets_->finish();
   }
 
@@ -666,6 +683,7 @@ class Certifier {
     for (Violation& v : facet_fatal_) fail(std::move(v));
     std::vector<std::uint32_t>().swap(facet_count_);
     std::vector<Cell>().swap(rows_);
+    std::vector<std::size_t>().swap(row_of_);
     buckets_.reset();
   }
 
@@ -926,6 +944,9 @@ class Certifier {
     }
   }
 
+  /// The row of an index into rows_ (a share keeps only its rows).
+  std::size_t row_number(std::size_t k) const { return row_of_.empty() ? k : row_of_[k]; }
+
   /// A facet of the certifier's numbers as reported: in the input's, increasing.
   std::vector<std::uint32_t> input_face(const std::array<std::uint32_t, D>& facet) const {
     std::vector<std::uint32_t> f(facet.begin(), facet.end());
@@ -948,23 +969,23 @@ class Certifier {
     std::copy(g[0].rest.begin(), g[0].rest.end(), facet.begin() + 1);
     const auto face = [&] { return input_face(facet); };
     if (g.size() == 1) {
-      out.boundary.push_back({facet, g[0].apex, g[0].positive(), g[0].row()});
+      out.boundary.push_back({facet, g[0].apex, g[0].positive(), row_number(g[0].row())});
       return;
     }
     if (g.size() > 2) {
-      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
+      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face()});
       return;
     }
     const std::uint32_t a = g[0].apex, b = g[1].apex;
     if (a == b) {
-      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = g[0].row(), .other_simplex = g[1].row(),
+      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()),
                            .face = renumbered() || sharing_ ? face() : std::vector<std::uint32_t>{}});
       return;
     }
     // Both rows were found proper: (facet, a) and (facet, b) have known, non-zero
     // orientations, and the apexes lie on opposite sides exactly when these differ.
     if (g[0].positive() == g[1].positive()) {
-      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
+      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face()});
       return;
     }
     ++out.interior_facets;
@@ -982,7 +1003,7 @@ class Certifier {
     s[1] = positive ? s1 : s0;
     const kernel::Oriented_side side = k_.side_of_oriented_sphere_unperturbed_d_object()(s);
     const auto witness = [&](Rule rule) {
-      return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = input_number(b)};
+      return Violation{.rule = rule, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face(), .point = input_number(b)};
     };
     if (side == kernel::ON_POSITIVE_SIDE) {
       out.delaunay.push_back(witness(Rule::not_locally_delaunay));
@@ -1106,7 +1127,9 @@ class Certifier {
   std::vector<std::uint8_t> usable_;        // finite and a first occurrence (while the rows are read)
   std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex (streaming)
   std::size_t proper_rows_ = 0;             // rows found proper simplices
-  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory)
+  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory; a share: its valid rows)
+  std::vector<std::size_t> row_of_;         // a share's: the row of each of rows_
+  std::vector<std::uint8_t> mine_;          // a share's: its vertices, in the input's numbers
   std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)
   std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it
   Cell first_cell_{};                       // its vertices (input numbers), positively oriented
