@@ -450,8 +450,14 @@ class Certifier {
             std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 64, 1.0, 512.0)));
         buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
         encoded.resize(block_rows);
-      } else if (sharing_) {
+      } else if (compact()) {
         encoded.resize(block_rows);  // the share's rows are then kept, with their numbers
+        // Its part of the rows, and a little for those that cross into other parts.
+        if (const std::size_t m = source.remaining(); m != npos) {
+          const std::size_t expected = std::min(m, m / share_.parts + m / 16);
+          rows_.reserve(expected);
+          row_of_.reserve(expected);
+        }
       } else if (const std::size_t m = source.remaining(); m != npos) {
         rows_.reserve(m);
       }
@@ -479,7 +485,7 @@ class Certifier {
         }
       }
       Cell* out = encoded.data();
-      if (!options_.stream && !sharing_) {
+      if (!options_.stream && !compact()) {
         rows_.resize(r0 + k);
         out = rows_.data() + r0;
       }
@@ -532,7 +538,7 @@ class Certifier {
         for (Violation& v : res.fatal) fail(std::move(v));
         covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
       }
-      if (sharing_ && !options_.stream && !stop())
+      if (compact() && !stop())
         for (std::size_t i = 0; i < k; ++i) {
           if (!is_valid_row(out[i])) continue;
           rows_.push_back(out[i]);
@@ -944,6 +950,8 @@ class Certifier {
     }
   }
 
+  /// Whether rows_ keeps only the share's rows (in memory, a share of several).
+  bool compact() const { return sharing_ && share_.parts > 1 && !options_.stream; }
   /// The row of an index into rows_ (a share keeps only its rows).
   std::size_t row_number(std::size_t k) const { return row_of_.empty() ? k : row_of_[k]; }
 
