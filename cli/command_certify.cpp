@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "certify_text.hpp"
 #include "cli.hpp"
 #include "dewall/certify/certify.hpp"
 #include "dewall/io/quote.hpp"
@@ -82,15 +83,10 @@ int command_certify(int argc, char** argv) {
                           " points has at least one)");
 
   // Witnesses name input numbers as the files do (TetGen may count from 1).
+  const Certify_names names{sname, points.first_index, [&](std::size_t r) { return list.where(sname, r); }, list.format};
+  const auto name = [&](std::size_t r) { return names(r); };
+  const auto shifted = [&](const certify::Violation& v) { return names.shifted(v); };
   const std::size_t shift = points.first_index;
-  const auto name = [&](std::size_t r) {
-    return "simplex " + std::to_string(r + shift) + " (" + list.where(sname, r) + ")";
-  };
-  const auto shifted = [&](certify::Violation v) {
-    for (auto& f : v.face) f = static_cast<std::uint32_t>(f + shift);
-    if (v.point != certify::npos) v.point += shift;
-    return v;
-  };
   const bool ok = report.delaunay && (report.canonical || !canonical);
   // A text file's line of row r, as a JSON member; binary files have none.
   const auto line = [&](const char* key, std::size_t r) {
@@ -133,30 +129,7 @@ int command_certify(int argc, char** argv) {
     return ok ? 0 : 1;
   }
 
-  const std::string what = std::to_string(report.simplices) + " simplices, " + std::to_string(report.points) +
-                           " points (" + std::to_string(report.distinct_points) + " distinct)";
-  if (report.canonical) {
-    std::printf("delaunay canonical: %s is the canonical Delaunay triangulation of %s (%s)\n", sname.c_str(),
-                pname.c_str(), what.c_str());
-  } else if (report.delaunay) {
-    std::printf("delaunay not-canonical: %s is a Delaunay triangulation of %s but not the canonical one (%s)\n",
-                sname.c_str(), pname.c_str(), what.c_str());
-  } else if (options.all) {  // the list below starts with the first violation: not printed twice
-    std::printf("not delaunay: %s is not a Delaunay triangulation of %s (%zu violations):\n", sname.c_str(),
-                pname.c_str(), report.violations.size());
-  } else {
-    std::printf("not delaunay: %s is not a Delaunay triangulation of %s: %s\n", sname.c_str(), pname.c_str(),
-                certify::describe(shifted(*report.first_fatal()), name).c_str());
-  }
-  if (!report.delaunay && list.format == "qhull" && report.first_fatal()->rule == certify::Rule::index_out_of_range)
-    std::printf("  (Qhull numbers the centrum points it adds to non-simplicial facets past the input: run qdelaunay with Qt)\n");
-  if (options.all) {
-    for (const auto& v : report.violations) std::printf("  %s\n", certify::describe(shifted(v), name).c_str());
-  } else if (report.delaunay && !report.canonical) {
-    std::printf("  %s\n", certify::describe(shifted(*report.first_note()), name).c_str());
-  }
-  if (canonical && report.delaunay && !report.canonical) std::printf("--canonical: fails\n");
-  return ok ? 0 : 1;
+  return print_certify_text(report, names, pname, canonical, options.all);
 }
 
 const bool registered = register_command({"certify", command_certify,

@@ -24,8 +24,16 @@
 // rank's error and ends with it; rank 0 prints it. Exit 1: the points cannot
 // be triangulated (a non-finite coordinate, too few distinct points, not
 // spanning E^D); 2: usage, reading or writing; 0: success.
+//
+//   mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--per-rank] [--threads N]
+//
+// `dewall certify` split over the ranks (certify_share, merge_shares): every
+// rank reads both files (--per-rank: triangulate --per-rank's files, in rank order), checks its share of the vertices' facets, rows and
+// points, and sends its findings to rank 0, which merges them and prints what
+// `dewall certify` prints; every rank exits with its status.
 #include <fcntl.h>
 #include <mpi.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -41,17 +49,23 @@
 #include <cstring>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <span>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "certify_text.hpp"
+#include "dewall/certify/certify.hpp"
 #include "dewall/io/binary_points.hpp"
 #include "dewall/io/binary_simplices.hpp"
 #include "dewall/io/dimensions.hpp"
 #include "dewall/io/format_names.hpp"
 #include "dewall/io/output_file.hpp"
+#include "dewall/io/point_reader.hpp"
+#include "dewall/io/quote.hpp"
+#include "dewall/io/simplex_reader.hpp"
 #include "dewall/io/simplex_rows.hpp"
 #include "dewall/io/simplex_writer.hpp"
 #include "dewall/mpi/collective_error.hpp"
@@ -97,14 +111,60 @@ const char* const usage_text =
     "  --stats   per-rank figures on standard error (points, halo, rounds, seconds, CPU\n"
     "            seconds, peak memory)\n"
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
-    "            rank's block (default 1; 0: none); only the time changes\n";
+    "            rank's block (default 1; 0: none); only the time changes\n"
+    "\n"
+    "usage: mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--per-rank]\n"
+    "                                      [--threads N] [--stats]\n"
+    "\n"
+    "`dewall certify` on R ranks: the same verdict, witness, words and exit status (0:\n"
+    "Delaunay, and canonical with --canonical; 1: not; 2: unreadable input). Every rank\n"
+    "reads POINTS and SIMPLICES (any format dewall certify reads) and checks the facets,\n"
+    "rows and points of its share of the vertices; rank 0 merges the shares' findings\n"
+    "and prints the verdict.\n"
+    "  --stats   per-rank seconds on standard error (reading, its share, merging)\n"
+    "  --per-rank  SIMPLICES is the OUT of `triangulate --per-rank`: the files\n"
+    "            OUT.r0.ext, OUT.r1.ext, ... up to the first missing one, their rows\n"
+    "            numbered one after another\n"
+    "  --threads N   at most N threads per rank (default: this node's cores shared\n"
+    "            among its ranks)\n";
 
 struct Arguments {
+  bool certify = false;
+  std::string simplices;  // certify's
+  bool canonical = false, all = false;
+  unsigned threads = 0;
   std::string input, output;
   bool stats = false, sorted = false, per_rank = false;
   int index_bytes = 0;  // 0: 4, or 8 when the points need it
   dewall::mpi::Options options;
 };
+
+Arguments parse_certify(const std::vector<std::string>& a) {
+  Arguments r;
+  r.certify = true;
+  for (std::size_t i = 1; i < a.size(); ++i) {
+    if (a[i] == "--help" || a[i] == "-h") throw Usage_error("");
+    if (a[i] == "--canonical") r.canonical = true;
+    else if (a[i] == "--all") r.all = true;
+    else if (a[i] == "--per-rank") r.per_rank = true;
+    else if (a[i] == "--stats") r.stats = true;
+    else if (a[i] == "--threads") {
+      std::uint64_t x = 0;
+      const std::string v = i + 1 < a.size() ? a[i + 1] : std::string();
+      const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), x);
+      if (v.empty() || ec != std::errc() || end != v.data() + v.size() || x == 0 || x > 4096)
+        throw Usage_error("--threads takes a whole number from 1 to 4096");
+      r.threads = static_cast<unsigned>(x);
+      ++i;
+    } else if (a[i] == "-") throw Usage_error("certify: every rank reads the files: name them, not '-'");
+    else if (!a[i].empty() && a[i][0] == '-') throw Usage_error("unknown option '" + a[i] + "'");
+    else if (r.input.empty()) r.input = a[i];
+    else if (r.simplices.empty()) r.simplices = a[i];
+    else throw Usage_error("certify takes two files, POINTS and SIMPLICES");
+  }
+  if (r.simplices.empty()) throw Usage_error("certify needs POINTS and SIMPLICES");
+  return r;
+}
 
 Arguments parse(int argc, char** argv) {
   std::vector<std::string> a(argv + 1, argv + argc);
@@ -112,10 +172,12 @@ Arguments parse(int argc, char** argv) {
   if (a[0] == "--help" || a[0] == "-h") throw Usage_error("");
   if (a[0] == "help") {  // dewall-mpi help [triangulate], as dewall's
     if (a.size() > 2) throw Usage_error("unexpected argument '" + a[2] + "'");
-    if (a.size() == 2 && a[1] != "triangulate") throw Usage_error("unknown command '" + a[1] + "' (the one command: triangulate)");
+    if (a.size() == 2 && a[1] != "triangulate" && a[1] != "certify")
+      throw Usage_error("unknown command '" + a[1] + "' (the commands: triangulate, certify)");
     throw Usage_error("");
   }
-  if (a[0] != "triangulate") throw Usage_error("unknown command '" + a[0] + "' (the one command: triangulate)");
+  if (a[0] == "certify") return parse_certify(a);
+  if (a[0] != "triangulate") throw Usage_error("unknown command '" + a[0] + "' (the commands: triangulate, certify)");
   Arguments r;
   for (std::size_t i = 1; i < a.size(); ++i) {
     if (a[i] == "--help" || a[i] == "-h") throw Usage_error("");
@@ -454,10 +516,10 @@ void guarded(std::exception_ptr& failed, F&& f) {
 }
 
 /// OUT with ".r<rank>" before its extension (the per-rank files).
-std::string per_rank_name(const std::string& out, int rank) {
+std::string per_rank_name(const std::string& out, const std::string& rank) {
   const std::size_t slash = out.find_last_of('/');
   const std::size_t dot = out.find_last_of('.');
-  const std::string tag = ".r" + std::to_string(rank);
+  const std::string tag = ".r" + rank;
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash) || dot == slash + 1)
     return out + tag;
   return out.substr(0, dot) + tag + out.substr(dot);
@@ -483,7 +545,7 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
 
   if (args.per_rank) {
     // Each rank its own file, committed once every rank has written its own.
-    const std::string name = per_rank_name(args.output, rank);
+    const std::string name = per_rank_name(args.output, std::to_string(rank));
     std::unique_ptr<dewall::io::Output_file> file;
     step(comm, [&] { file = std::make_unique<dewall::io::Output_file>(name); });
     // The simplices come in parts (one per region): .dwsx's count is patched
@@ -649,6 +711,214 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
   return 0;
 }
 
+/// Simplex files as the certifier reads them: rows straight into its blocks,
+/// one file after another.
+template <int D>
+class Files_source final : public dewall::certify::Simplex_source<D> {
+ public:
+  explicit Files_source(std::span<const std::unique_ptr<dewall::io::Simplex_file_reader>> readers) : readers_(readers) {}
+  std::size_t read(std::span<dewall::certify::Simplex_indices<D>> rows) override {
+    for (; next_ < readers_.size(); ++next_)
+      if (const std::size_t k = readers_[next_]->read(
+              std::span<std::uint32_t>(reinterpret_cast<std::uint32_t*>(rows.data()), rows.size() * (D + 1))))
+        return k;
+    return 0;
+  }
+  std::size_t remaining() const override {
+    std::size_t sum = 0;
+    for (std::size_t f = next_; f < readers_.size(); ++f) {
+      const std::uint64_t m = readers_[f]->remaining();
+      if (m == ~std::uint64_t{0}) return dewall::certify::npos;
+      sum += static_cast<std::size_t>(m);
+    }
+    return sum;
+  }
+
+ private:
+  std::span<const std::unique_ptr<dewall::io::Simplex_file_reader>> readers_;
+  std::size_t next_ = 0;
+};
+
+/// The simplex files: SIMPLICES, or with --per-rank OUT.r0.ext, OUT.r1.ext, …
+/// (dewall-mpi triangulate --per-rank's names) up to the first missing one.
+struct Simplex_files {
+  std::vector<std::string> paths;
+  std::vector<std::unique_ptr<dewall::io::Simplex_file_reader>> readers;
+  std::vector<std::uint64_t> first_row;  // of each file, then the total
+  std::string name;                      // as messages give it
+
+  /// "FILE:LINE" of row r.
+  std::string where(std::size_t r) const {
+    const std::size_t f = static_cast<std::size_t>(std::upper_bound(first_row.begin(), first_row.end(), r) - first_row.begin()) - 1;
+    return readers[f]->list().where(dewall::io::file_name(paths[f]), r - first_row[f]);
+  }
+};
+
+/// A share's findings as words of 64 bits, and back (rank 0 merges them).
+template <int D>
+std::vector<std::uint64_t> serialize(const dewall::certify::Share_report<D>& s) {
+  const auto& r = s.report;
+  std::vector<std::uint64_t> w = {r.distinct_points, r.simplices, r.interior_facets, r.boundary_facets,
+                                  r.cospherical_facets, s.first_row, r.violations.size(), s.boundary.size()};
+  w.insert(w.end(), s.first_cell.begin(), s.first_cell.end());
+  for (const auto& v : r.violations) {
+    w.insert(w.end(), {static_cast<std::uint64_t>(v.rule), v.simplex, v.other_simplex, v.point, v.face.size()});
+    w.insert(w.end(), v.face.begin(), v.face.end());
+  }
+  for (const auto& b : s.boundary) {
+    w.insert(w.end(), b.facet.begin(), b.facet.end());
+    w.insert(w.end(), {b.apex, b.positive ? 1u : 0u, b.row});
+  }
+  return w;
+}
+
+template <int D>
+dewall::certify::Share_report<D> deserialize(std::span<const std::uint64_t> w) {
+  dewall::certify::Share_report<D> s;
+  std::size_t at = 0;
+  const auto next = [&] { return w[at++]; };
+  auto& r = s.report;
+  r.dimension = D;
+  r.distinct_points = next();
+  r.simplices = next();
+  r.interior_facets = next();
+  r.boundary_facets = next();
+  r.cospherical_facets = next();
+  s.first_row = next();
+  r.violations.resize(next());
+  s.boundary.resize(next());
+  for (auto& v : s.first_cell) v = static_cast<std::uint32_t>(next());
+  for (auto& v : r.violations) {
+    v.rule = static_cast<dewall::certify::Rule>(next());
+    v.simplex = next();
+    v.other_simplex = next();
+    v.point = next();
+    v.face.resize(next());
+    for (auto& f : v.face) f = static_cast<std::uint32_t>(next());
+  }
+  for (auto& b : s.boundary) {
+    for (auto& f : b.facet) f = static_cast<std::uint32_t>(next());
+    b.apex = static_cast<std::uint32_t>(next());
+    b.positive = next() != 0;
+    b.row = next();
+  }
+  return s;
+}
+
+/// This node's cores shared among its ranks (at least one each).
+unsigned threads_per_rank(MPI_Comm comm, int rank) {
+  MPI_Comm node;
+  MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &node);
+  int local = 1;
+  MPI_Comm_size(node, &local);
+  MPI_Comm_free(&node);
+  cpu_set_t set;
+  const unsigned cores = sched_getaffinity(0, sizeof set, &set) == 0 ? static_cast<unsigned>(CPU_COUNT(&set)) : 1u;
+  return std::max(1u, cores / static_cast<unsigned>(std::max(local, 1)));
+}
+
+template <int D>
+int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table& points, const Simplex_files& files, int rank,
+            int size, double read_seconds) {
+  const double t0 = MPI_Wtime();
+  namespace certify = dewall::certify;
+  using K = dewall::kernel::Filtered_kernel_d<D>;
+  static_assert(sizeof(dewall::kernel::Point_d<D>) == D * sizeof(double) && alignof(dewall::kernel::Point_d<D>) == alignof(double));
+  const std::span<const dewall::kernel::Point_d<D>> p(reinterpret_cast<const dewall::kernel::Point_d<D>*>(points.coordinates.data()),
+                                                      points.coordinates.size() / D);
+  certify::Options options{.all = args.all, .threads = args.threads ? args.threads : threads_per_rank(comm, rank)};
+  // As dewall certify: rows that would take more than a quarter of the memory stream.
+  const std::uint64_t rows = files.first_row.back();
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
+  const std::uint64_t memory = pages > 0 && page_size > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size) : 0;
+  if (rows != ~std::uint64_t{0} && memory > 0 && rows * (D + 1) * 4 > memory / 4) options.stream = true;
+
+  std::vector<std::uint64_t> mine;
+  step(comm, [&] {
+    Files_source<D> source(files.readers);
+    mine = serialize<D>(certify::certify_share<K>(p, source, {static_cast<std::size_t>(rank), static_cast<std::size_t>(size)}, options));
+  });
+  const double t1 = MPI_Wtime();
+  // Rank 0 gathers the shares, in chunks (no 2^31 limit on a share).
+  constexpr std::size_t chunk = std::size_t{1} << 24;
+  std::vector<std::vector<std::uint64_t>> all;
+  if (rank == 0) {
+    all.resize(static_cast<std::size_t>(size));
+    all[0] = std::move(mine);
+    for (int q = 1; q < size; ++q) {
+      std::uint64_t n = 0;
+      MPI_Recv(&n, 1, MPI_UINT64_T, q, 2, comm, MPI_STATUS_IGNORE);
+      auto& w = all[static_cast<std::size_t>(q)];
+      w.resize(n);
+      for (std::size_t k = 0; k < n; k += chunk)
+        MPI_Recv(w.data() + k, static_cast<int>(std::min<std::size_t>(chunk, n - k)), MPI_UINT64_T, q, 3, comm, MPI_STATUS_IGNORE);
+    }
+  } else {
+    const std::uint64_t n = mine.size();
+    MPI_Send(&n, 1, MPI_UINT64_T, 0, 2, comm);
+    for (std::size_t k = 0; k < n; k += chunk)
+      MPI_Send(mine.data() + k, static_cast<int>(std::min<std::size_t>(chunk, n - k)), MPI_UINT64_T, 0, 3, comm);
+  }
+  int status = 0;
+  step(comm, [&] {
+    if (rank != 0) return;
+    std::vector<certify::Share_report<D>> shares;
+    for (const auto& w : all) shares.push_back(deserialize<D>(w));
+    std::vector<std::vector<std::uint64_t>>().swap(all);
+    const certify::Report report = certify::merge_shares<K>(p, std::span<const certify::Share_report<D>>(shares), options);
+    if (report.simplices == 0)
+      throw File_error(files.name + ": no simplices (a triangulation of " + std::to_string(points.size()) + " points has at least one)");
+    const dewall::cli::Certify_names names{files.name, points.first_index, [&](std::size_t r) { return files.where(r); },
+                                           files.readers[0]->list().format};
+    status = dewall::cli::print_certify_text(report, names, dewall::io::file_name(args.input), args.canonical, args.all);
+    std::fflush(stdout);
+  });
+  MPI_Bcast(&status, 1, MPI_INT, 0, comm);
+  if (args.stats) {
+    const std::array<double, 3> mine_seconds = {read_seconds, t1 - t0, MPI_Wtime() - t1};
+    std::vector<double> every(rank == 0 ? 3 * static_cast<std::size_t>(size) : 0);
+    MPI_Gather(mine_seconds.data(), 3, MPI_DOUBLE, every.data(), 3, MPI_DOUBLE, 0, comm);
+    if (rank == 0) {
+      std::fprintf(stderr, "rank | seconds:   read  share  merge\n");
+      for (int q = 0; q < size; ++q)
+        std::fprintf(stderr, "%4d |          %6.3f %6.3f %6.3f\n", q, every[3 * static_cast<std::size_t>(q)],
+                     every[3 * static_cast<std::size_t>(q) + 1], every[3 * static_cast<std::size_t>(q) + 2]);
+    }
+  }
+  return status;
+}
+
+int certify_command(const Arguments& args, int rank, int size) {
+  dewall::io::Point_table points;
+  Simplex_files files;
+  const double t0 = MPI_Wtime();
+  step(MPI_COMM_WORLD, [&] {
+    points = dewall::io::read_points_file(args.input);
+    if (!args.per_rank) {
+      files.paths = {args.simplices};
+      files.name = dewall::io::file_name(args.simplices);
+    } else {
+      for (int r = 0; ::access(per_rank_name(args.simplices, std::to_string(r)).c_str(), F_OK) == 0; ++r)
+        files.paths.push_back(per_rank_name(args.simplices, std::to_string(r)));
+      files.name = dewall::io::file_name(per_rank_name(args.simplices, "*"));
+      if (files.paths.empty()) throw File_error(per_rank_name(args.simplices, "0") + ": cannot open file: no per-rank files");
+    }
+    files.first_row = {0};
+    for (const std::string& path : files.paths) {
+      files.readers.push_back(std::make_unique<dewall::io::Simplex_file_reader>(path, points.dimension, points.first_index));
+      const std::uint64_t m = files.readers.back()->remaining();
+      if (m == ~std::uint64_t{0} && files.paths.size() > 1) throw File_error(path + ": the number of simplices is not in its header");
+      files.first_row.push_back(m == ~std::uint64_t{0} ? m : files.first_row.back() + m);
+    }
+    if (files.first_row.back() == 0)
+      throw File_error(files.name + ": no simplices (a triangulation of " + std::to_string(points.size()) +
+                       " points has at least one)");
+  });
+  return dewall::kernel::with_dimension(points.dimension, [&](auto d) {
+    return certify<decltype(d)::value>(MPI_COMM_WORLD, args, points, files, rank, size, MPI_Wtime() - t0);
+  });
+}
+
 int run(int argc, char** argv, int rank, int size) {
   Arguments args;
   try {
@@ -660,6 +930,14 @@ int run(int argc, char** argv, int rank, int size) {
       else std::fputs(usage_text, stdout);
     }
     return *e.what() ? 2 : 0;
+  }
+  if (args.certify) {
+    try {
+      return certify_command(args, rank, size);
+    } catch (const std::exception& e) {
+      if (rank == 0) std::fprintf(stderr, "dewall-mpi: %s\n", e.what());
+      return 2;
+    }
   }
   try {
     // Checked before any work, as dewall checks them: a name that says a

@@ -19,6 +19,7 @@
 #include "dewall/certify/facet_table.hpp"
 #include "dewall/certify/spatial_order.hpp"
 #include "dewall/dewall.hpp"
+#include "support/certify_mutants.hpp"
 #include "support/certify_reference.hpp"
 #include "support/dewall_point_sets.hpp"
 
@@ -186,44 +187,8 @@ void same_reports_with_mutants(const std::vector<kernel::Point_d<D>>& p, const s
   const Rows<D> t = dewall::triangulate<D>(p, dewall::Options{.engine = dewall::Engine::dewall}).simplices;
   same_report<D>(p, t, what);
   std::size_t variant = first_variant;
-  const auto pick = [&](std::size_t n) { return static_cast<std::size_t>(rng() % n); };
-  const auto mutant = [&](const std::string& name, auto change) {
-    Rows<D> m = t;
-    change(m);
+  dewall::test::for_each_mutant<D>(p.size(), t, rng, [&](const std::string& name, const Rows<D>& m) {
     same_report<D>(p, m, what + ", " + name, variant++ % certifier_variants);
-  };
-  mutant("a row dropped", [&](Rows<D>& m) { m.erase(m.begin() + static_cast<std::ptrdiff_t>(pick(m.size()))); });
-  mutant("the first row dropped", [&](Rows<D>& m) { m.erase(m.begin()); });
-  mutant("a row repeated, reordered", [&](Rows<D>& m) {
-    auto row = m[pick(m.size())];
-    std::reverse(row.begin(), row.end());
-    m.push_back(row);
-  });
-  mutant("a vertex replaced", [&](Rows<D>& m) { m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(pick(p.size())); });
-  mutant("three vertices replaced", [&](Rows<D>& m) {
-    for (int k = 0; k < 3; ++k) m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(pick(p.size()));
-  });
-  mutant("an index out of range", [&](Rows<D>& m) { m[pick(m.size())][pick(D + 1)] = static_cast<std::uint32_t>(p.size() + 2); });
-  mutant("a repeated vertex", [&](Rows<D>& m) {
-    auto& row = m[pick(m.size())];
-    row[1] = row[0];
-  });
-  mutant("a row of the first simplex's neighbourhood added", [&](Rows<D>& m) {
-    auto row = m[0];
-    row[0] = m[1][0] == row[1] ? m[1][1] : m[1][0];
-    m.push_back(row);
-  });
-  mutant("every row of a point removed", [&](Rows<D>& m) {
-    const std::uint32_t v = m[pick(m.size())][0];
-    std::erase_if(m, [&](const auto& row) { return std::find(row.begin(), row.end(), v) != row.end(); });
-  });
-  mutant("rows shuffled and reoriented", [&](Rows<D>& m) {
-    std::shuffle(m.begin(), m.end(), rng);
-    for (auto& row : m) std::shuffle(row.begin(), row.end(), rng);
-  });
-  mutant("rows reversed and two swapped vertices in the first", [&](Rows<D>& m) {
-    std::reverse(m.begin(), m.end());
-    std::swap(m[0][0], m[0][D]);
   });
 }
 

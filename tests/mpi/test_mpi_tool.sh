@@ -7,6 +7,9 @@
 #   * regions (--region-points, --stream): canonical, the same bytes on a
 #     second run, .ele, per-rank files, --sorted the same bytes as without;
 #   * 8-byte .dwsx indices (--index-bytes 8): canonical;
+#   * certify on 1, 2 and 3 ranks: the words and exit status of `dewall certify`
+#     on a canonical output and on mutants of it (with and without --all, with
+#     --canonical), and on --per-rank files;
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
 #   * no -o: exit 2, one line and a pointer to the help; help, help triangulate;
@@ -117,6 +120,38 @@ run 2 triangulate u3.dwpt -o u3.bad.dwsx --index-bytes 6
 [ "$status" -eq 2 ] || fail "--index-bytes 6: exit $status, expected 2"
 echo "8-byte indices: canonical"
 
+# certify: what `dewall certify` prints (standard output) and its exit status.
+certify_same() {  # certify_same RANKS FILE ARGS…
+  local ranks=$1 file=$2; shift 2
+  "$dewall" certify u3.dwpt "$file" "$@" >want.out 2>/dev/null
+  local want=$?
+  "$mpiexec" "$np" "$ranks" "$tool" certify u3.dwpt "$file" "$@" >got.out 2>/dev/null
+  local got=$?
+  if [ "$got" -ne "$want" ] || ! cmp -s want.out got.out; then
+    fail "certify $file $* on $ranks ranks: exit $got, dewall certify's $want"; diff want.out got.out >&2
+  fi
+}
+awk 'NR == 100 { $2 = 17 } { print }' u3.3.txt >u3.m1.txt            # a vertex replaced
+awk 'NR != 5000' u3.3.txt >u3.m2.txt                                 # a row dropped
+awk '{ print } NR == 7000 { print $4, $3, $2, $1 }' u3.3.txt >u3.m3.txt  # a row repeated, reversed
+awk 'NR == 12000 { $1 = 4002 } { print }' u3.3.txt >u3.m4.txt        # an index out of range
+awk 'NR == 3 { $1 = $2 } NR == 20000 { $3 = 11 } { print }' u3.3.txt >u3.m5.txt  # a repeated vertex, a vertex replaced
+for ranks in 1 2 3; do
+  certify_same "$ranks" u3.3.dwsx --canonical
+  for m in 1 2 3 4 5; do
+    certify_same "$ranks" "u3.m$m.txt"
+    certify_same "$ranks" "u3.m$m.txt" --all --canonical
+  done
+done
+grep -q "^not delaunay" got.out || fail "certify: the last mutant not rejected"
+"$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.parts.txt --per-rank --canonical >got.out 2>&1 &&
+  grep -q "^delaunay canonical: u3.parts.r\*.txt is the canonical" got.out || { fail "certify --per-rank"; cat got.out >&2; }
+awk 'NR == 100 { $2 = 17 } { print }' u3.parts.r1.txt >u3.mparts.r0.txt
+"$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.mparts.txt --per-rank >got.out 2>/dev/null
+[ $? -eq 1 ] && grep -q "^not delaunay: u3.mparts.r\*.txt" got.out || { fail "certify --per-rank, a mutant"; cat got.out >&2; }
+rm -f want.out got.out
+echo "certify: dewall certify's words and status on 1-3 ranks, canonical and mutants; --per-rank"
+
 # The errors. old.txt must survive each of them.
 echo "old contents" >old.txt
 expect_error() {  # expect_error STATUS PATTERN DESCRIPTION
@@ -144,6 +179,8 @@ expect_error 2 "dewall-mpi: cut.dwpt: truncated: 4000 points of dimension 3 need
 
 run 2 triangulate missing.dwpt -o old.txt
 expect_error 2 "dewall-mpi: missing.dwpt: cannot open file" "a missing file"
+run 3 certify u3.dwpt missing.txt
+expect_error 2 "dewall-mpi: missing.txt: cannot open file" "certify, a missing file"
 
 run 3 triangulate u3.dwpt
 expect_error 2 "^dewall-mpi: missing -o OUT$" "no output file"
@@ -173,7 +210,7 @@ run 2 triangulate u3.bin -o u3.bin
 cmp -s u3.dwpt u3.bin || fail "-o the input: the input was replaced"
 rm -f u3.bin
 
-for args in "help" "help triangulate" "--help"; do
+for args in "help" "help triangulate" "help certify" "--help"; do
   "$mpiexec" "$np" 1 "$tool" $args >help.log 2>&1
   [ $? -eq 0 ] && grep -q "^usage: mpirun -n R dewall-mpi triangulate" help.log || fail "dewall-mpi $args: no usage"
 done

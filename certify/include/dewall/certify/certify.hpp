@@ -75,6 +75,8 @@
 #include <numeric>
 #include <optional>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <system_error>
 #include <thread>
 #include <type_traits>
@@ -98,12 +100,55 @@
 #include "dewall/kernel/point.hpp"
 #include "dewall/kernel/static_filter.hpp"
 
+namespace dewall::certify {
+
+/// One share of a certification (certify_share): `part` of `parts`. A share
+/// checks the facets whose smallest vertex, in the certifier's numbering of the
+/// points (the same for every share), lies in the part's range of vertices,
+/// the rows whose smallest vertex lies there (a row with an index out of range:
+/// row r in part r mod parts), and the points there; merge_shares makes one
+/// report of all parts.
+struct Share {
+  std::size_t part = 0, parts = 1;
+};
+
+/// A facet of one simplex: its vertices (input numbers, increasing), the apex
+/// of its simplex, whether (facet…, apex) is positively oriented, and the
+/// simplex's row.
+template <int D>
+struct Boundary_facet {
+  std::array<std::uint32_t, D> facet;
+  std::uint32_t apex;
+  bool positive;
+  std::size_t row;
+};
+
+/// What one share found, for merge_shares: its violations (fatal ones,
+/// Delaunay ones and notes, each list in the certifier's order, the facets of
+/// duplicate_simplex kept as sort keys), its counts, and its boundary facets
+/// (in facet order), which the boundary checks need all together.
+template <int D>
+struct Share_report {
+  Report report;
+  std::vector<Boundary_facet<D>> boundary;
+  std::size_t first_row = npos;     // the first proper simplex (the same in every share)
+  Simplex_indices<D> first_cell{};  // its vertices, positively oriented
+};
+
+}  // namespace dewall::certify
+
 namespace dewall::certify::detail {
 
 /// certify() with the project's kernel, compiled into dewall::certify with the
 /// project's flags (certify/src/certify_filtered.cpp), D = 2 … 6.
 template <int D>
 Report certify_filtered(std::span<const kernel::Point_d<D>> points, Simplex_source<D>& simplices, const Options& options);
+template <int D>
+Share_report<D> certify_share_filtered(std::span<const kernel::Point_d<D>> points, Simplex_source<D>& simplices, Share share,
+                                       const Options& options);
+template <int D>
+Report merge_shares_filtered(std::span<const kernel::Point_d<D>> points, std::span<const Share_report<D>> shares,
+                             const Options& options);
 
 template <class>
 inline constexpr bool always_false = false;
@@ -128,35 +173,178 @@ class Certifier {
   Report run(Simplex_source<D>& source) {
     report_.dimension = D;
     report_.points = points_.size();
+    const auto bound = [&](std::size_t p) {
+      __extension__ using U128 = unsigned __int128;
+      return static_cast<std::size_t>(U128{points_.size()} * p / share_.parts);
+    };
+    lo_ = bound(share_.part);
+    hi_ = bound(share_.part + 1);
     check_points();
     make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
     read_rows(source);
     if (!stop()) check_vertices();
     std::vector<std::uint32_t>().swap(first_);
-    std::vector<std::uint32_t>().swap(to_work_);
+    // A share keeps the map: a walk in the input's numbers picks its facets by it.
+    if (!sharing_) std::vector<std::uint32_t>().swap(to_work_);
     if (!stop() && first_row_ != npos) check_facets();
-    if (!stop() && first_row_ != npos) check_boundary();
+    if (!stop() && first_row_ != npos) {
+      if (sharing_) report_.boundary_facets = boundary_.size();  // checked once all shares are in
+      else check_boundary();
+    }
     if (!stop() && first_row_ != npos) check_covering();
     // Structural violations first, then the Delaunay ones, then notes.
     auto& v = report_.violations;
     v = std::move(fatal_);
-    if (options_.all || v.empty()) v.insert(v.end(), delaunay_.begin(), delaunay_.end());
+    if (options_.all || v.empty() || sharing_) v.insert(v.end(), delaunay_.begin(), delaunay_.end());
     report_.delaunay = v.empty();
     report_.canonical = report_.delaunay && notes_.empty();
     v.insert(v.end(), notes_.begin(), notes_.end());
     return report_;
   }
 
+  /// run() for one share (Share says which); \pre share.part < share.parts.
+  Share_report<D> run_share(Simplex_source<D>& source, Share share) {
+    sharing_ = true;
+    share_ = share;
+    Report r = run(source);
+    return {std::move(r), std::move(boundary_), first_row_, first_cell_};
+  }
+
+  /// The report of the whole from the reports of all its shares (any order):
+  /// the violations in the certifier's order (Violation_order), the boundary
+  /// checked as run() checks it, and, without Options::all, what the serial
+  /// walk would have kept.
+  Report merge_shares(std::span<const Share_report<D>> shares) {
+    Report out;
+    out.dimension = D;
+    out.points = points_.size();
+    std::vector<Violation> fatal, delaunay, notes;
+    for (const Share_report<D>& s : shares) {
+      out.distinct_points = s.report.distinct_points;
+      out.simplices = s.report.simplices;
+      out.interior_facets += s.report.interior_facets;
+      out.boundary_facets += s.report.boundary_facets;
+      out.cospherical_facets += s.report.cospherical_facets;
+      for (const Violation& v : s.report.violations)
+        (v.rule == Rule::not_locally_delaunay ? delaunay : v.rule == Rule::not_canonical ? notes : fatal).push_back(v);
+      if (s.first_row != npos) first_row_ = s.first_row, first_cell_ = s.first_cell;
+    }
+    const auto sort = [](std::vector<Violation>& list) { std::stable_sort(list.begin(), list.end(), violation_before); };
+    sort(fatal);
+    // The boundary is checked when the serial walk gets there: every check
+    // before it passed (a share that stopped earlier has not handed over all of
+    // its boundary, and its violation comes first).
+    if (first_row_ != npos && (options_.all || fatal.empty() || violation_phase(fatal[0].rule) > facet_phase)) {
+      for (const Share_report<D>& s : shares) boundary_.insert(boundary_.end(), s.boundary.begin(), s.boundary.end());
+      std::sort(boundary_.begin(), boundary_.end(), [](const Boundary_facet& a, const Boundary_facet& b) { return a.facet < b.facet; });
+      check_boundary();
+      fatal.insert(fatal.end(), fatal_.begin(), fatal_.end());
+      sort(fatal);
+    }
+    sort(delaunay);
+    sort(notes);
+    if (!options_.all) {
+      // The serial walk: one fatal violation; the spheres tested up to the
+      // first Delaunay one, the facets walked up to a facet's fatal one, and
+      // none at all after a row's or a point's.
+      if (fatal.size() > 1) fatal.resize(1);
+      if (delaunay.size() > 1) delaunay.resize(1);
+      const auto note_seen = [&](const Violation& n) {
+        if (!fatal.empty() && violation_phase(fatal[0].rule) < facet_phase) return false;
+        if (!fatal.empty() && violation_phase(fatal[0].rule) == facet_phase && !(n.face < fatal[0].face)) return false;
+        return delaunay.empty() || n.face < delaunay[0].face;
+      };
+      if (!notes.empty() && !note_seen(notes[0])) notes.clear();
+      if (notes.size() > 1) notes.resize(1);
+    }
+    for (Violation& v : fatal)
+      if (v.rule == Rule::duplicate_simplex) v.face.clear();
+    auto& v = out.violations;
+    v = std::move(fatal);
+    if (options_.all || v.empty()) v.insert(v.end(), delaunay.begin(), delaunay.end());
+    out.delaunay = v.empty();
+    out.canonical = out.delaunay && notes.empty();
+    v.insert(v.end(), notes.begin(), notes.end());
+    return out;
+  }
+
  private:
-  /// A boundary facet: its vertices (increasing), the apex of its simplex,
-  /// whether (facet…, apex) is positively oriented, and the simplex's row.
-  struct Boundary_facet {
-    std::array<std::uint32_t, D> facet;
-    std::uint32_t apex;
-    bool positive;
-    std::size_t row;
-  };
+  /// A boundary facet (in the certifier's numbers while the facets are walked).
+  using Boundary_facet = certify::Boundary_facet<D>;
+
+  /// The checks in the order of the reports: points, rows, unused points,
+  /// facets, boundary, covering, then the Delaunay ones and notes.
+  static constexpr int facet_phase = 3;
+  static int violation_phase(Rule r) {
+    switch (r) {
+      case Rule::non_finite_point: return 0;
+      case Rule::index_out_of_range:
+      case Rule::repeated_vertex:
+      case Rule::duplicate_point_used:
+      case Rule::degenerate_simplex: return 1;
+      case Rule::point_not_a_vertex: return 2;
+      case Rule::facet_shared_by_many:
+      case Rule::duplicate_simplex:
+      case Rule::facet_same_side: return facet_phase;
+      case Rule::boundary_ridge_not_manifold:
+      case Rule::boundary_not_convex:
+      case Rule::boundary_facet_inward: return 4;
+      case Rule::multiple_covering: return 5;
+      case Rule::not_locally_delaunay: return 6;
+      case Rule::not_canonical: return 7;
+    }
+    return 8;
+  }
+  /// Whether a comes before b in a report (a strict weak order: a row's own
+  /// violations, and the boundary's, are equal, and keep their order).
+  static bool violation_before(const Violation& a, const Violation& b) {
+    const int pa = violation_phase(a.rule), pb = violation_phase(b.rule);
+    if (pa != pb) return pa < pb;
+    switch (pa) {
+      case 0:
+      case 2: return a.point < b.point;
+      case 1:
+      case 5: return a.simplex < b.simplex;
+      case 4: return false;
+      default: return a.face < b.face;
+    }
+  }
+
+  /// Whether this share reports on point i (input number): non-finite points by
+  /// input number, the others by the certifier's.
+  bool owns_bad_point(std::size_t i) const { return !sharing_ || i % share_.parts == share_.part; }
+  bool owns_vertex(std::uint32_t w) const { return lo_ <= w && w < hi_; }
+  /// Whether row r (input numbers) matters to this share (a vertex in its
+  /// range), and whether the share reports its checks (its smallest vertex
+  /// there; an index out of range: r mod parts).
+  std::pair<bool, bool> share_of_row(const Cell& c, std::size_t r) const {
+    if (!sharing_) return {true, true};
+    bool any = false;
+    for (std::uint32_t v : c) {
+      if (v >= points_.size()) {
+        const bool own = r % share_.parts == share_.part;
+        return {own, own};
+      }
+      any = any || mine_[v];
+    }
+    if (!any) return {false, false};
+    std::uint32_t smallest = std::numeric_limits<std::uint32_t>::max();
+    for (std::uint32_t v : c) smallest = std::min(smallest, work_number(v));
+    return {true, owns_vertex(smallest)};
+  }
+  /// Whether the facet (smallest vertex v, the others `rest`, in the numbers of
+  /// the walk) is this share's: its smallest vertex in the certifier's numbers is.
+  template <class Rest>
+  bool facet_in_share(std::uint32_t v, const Rest& rest) const {
+    if (!sharing_) return true;
+    std::uint32_t w = v;
+    if (!renumbered() && !to_work_.empty()) {  // the walk in the input's numbers
+      w = to_work_[v];
+      for (std::uint32_t u : rest) w = std::min(w, to_work_[u]);
+    }
+    return owns_vertex(w);
+  }
   /// A proper row in the certifier's numbers: its vertices in increasing
   /// order, and whether that order is positively oriented.
   struct Checked_row {
@@ -216,7 +404,7 @@ class Certifier {
         const auto& x = coords(points_[i]);
         for (double c : x)
           if (!kernel::is_finite(c)) bad_point_[i] = true;
-        if (bad_point_[i]) fail({.rule = Rule::non_finite_point, .point = i});
+        if (bad_point_[i] && owns_bad_point(i)) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }
     // Streaming, the duplicates' table stays within the working memory too.
@@ -266,8 +454,20 @@ class Certifier {
             std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 64, 1.0, 512.0)));
         buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
         encoded.resize(block_rows);
+      } else if (compact()) {
+        encoded.resize(block_rows);  // the share's rows are then kept, with their numbers
+        // Its part of the rows, and a little for those that cross into other parts.
+        if (const std::size_t m = source.remaining(); m != npos) {
+          const std::size_t expected = std::min(m, m / share_.parts + m / 16);
+          rows_.reserve(expected);
+          row_of_.reserve(expected);
+        }
       } else if (const std::size_t m = source.remaining(); m != npos) {
         rows_.reserve(m);
+      }
+      if (sharing_) {
+        mine_.assign(n, 0);
+        for (std::size_t i = 0; i < n; ++i) mine_[i] = owns_vertex(work_number(static_cast<std::uint32_t>(i)));
       }
     }
     std::optional<Witness_point<K>> witness;
@@ -289,7 +489,7 @@ class Certifier {
         }
       }
       Cell* out = encoded.data();
-      if (!options_.stream) {
+      if (!options_.stream && !compact()) {
         rows_.resize(r0 + k);
         out = rows_.data() + r0;
       }
@@ -303,18 +503,28 @@ class Certifier {
       const bool concurrent = threads_for(ranges) > 1;
       for_each_parallel(ranges, [&](std::size_t j) {
         Results& res = results[j];
+        std::vector<Violation> others;  // another share's to report
         const std::size_t a = k * j / ranges, b = k * (j + 1) / ranges;
         for (std::size_t i = a; i < b; ++i) {
           out[i] = invalid_row<D + 1>();
           if (!options_.all && !res.fatal.empty()) continue;
-          // The rows come in order, their points at random: ask for them a few rows ahead.
+          // The rows come in order, their points at random: ask for them a few
+          // rows ahead (a share: the points of its range).
           if (i + 8 < b)
             for (std::uint32_t v : in[i + 8])
-              if (v < n) prefetch(work_number(v));
+              if (v < n && (!sharing_ || mine_[v])) prefetch(work_number(v));
           if (!to_work_.empty() && i + 16 < b)
             for (std::uint32_t v : in[i + 16])
-              if (v < n) __builtin_prefetch(&to_work_[v]);
-          const auto s = checked_simplex(in[i], r0 + i, res.fatal);
+              if (v < n) __builtin_prefetch(sharing_ ? static_cast<const void*>(&mine_[v]) : &to_work_[v]);
+          if (sharing_ && !to_work_.empty() && i + 12 < b)
+            for (std::uint32_t v : in[i + 12])
+              if (v < n && mine_[v]) __builtin_prefetch(&to_work_[v]);
+          // A share checks the rows with a vertex in its range (every share
+          // decides a row's validity alike) and reports those it owns.
+          const auto [relevant, owned] = share_of_row(in[i], r0 + i);
+          if (!relevant) continue;
+          others.clear();
+          const auto s = checked_simplex(in[i], r0 + i, owned ? res.fatal : others);
           if (!s) continue;
           out[i] = encode_row(s->sorted, s->positive);
           ++res.proper;
@@ -323,7 +533,7 @@ class Certifier {
             count(facet_count_[s->sorted[1]], 1, concurrent);
           }
           for (std::uint32_t v : s->sorted) std::atomic_ref<std::uint8_t>(used_[v]).store(1, std::memory_order_relaxed);
-          if (r0 + i != first_row_ && contains_witness(*witness, s->sorted, s->positive)) res.covering.push_back(r0 + i);
+          if (owned && r0 + i != first_row_ && contains_witness(*witness, s->sorted, s->positive)) res.covering.push_back(r0 + i);
         }
       });
       for (Results& res : results) {
@@ -332,6 +542,12 @@ class Certifier {
         for (Violation& v : res.fatal) fail(std::move(v));
         covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
       }
+      if (compact() && !stop())
+        for (std::size_t i = 0; i < k; ++i) {
+          if (!is_valid_row(out[i])) continue;
+          rows_.push_back(out[i]);
+          row_of_.push_back(r0 + i);
+        }
       if (options_.stream && !stop())
         for (std::size_t i = 0; i < k; ++i) {
           if (!is_valid_row(out[i])) continue;
@@ -342,6 +558,7 @@ class Certifier {
     }
     report_.simplices = r0;
     std::vector<std::uint8_t>().swap(usable_);
+    std::vector<std::uint8_t>().swap(mine_);
     if (buckets_) buckets_->finish();
   }
 
@@ -432,7 +649,8 @@ class Certifier {
 
   void check_vertices() {
     for (std::size_t i = 0; i < points_.size() && !stop(); ++i)
-      if (!bad_point_[i] && first_[i] == i && !used_[work_number(static_cast<std::uint32_t>(i))])
+      if (!bad_point_[i] && first_[i] == i && owns_vertex(work_number(static_cast<std::uint32_t>(i))) &&
+          !used_[work_number(static_cast<std::uint32_t>(i))])
         fail({.rule = Rule::point_not_a_vertex, .point = i});
   }
 
@@ -462,7 +680,7 @@ class Certifier {
       for (auto* list : {&facet_fatal_, &delaunay_, &notes_}) {
         std::stable_sort(list->begin(), list->end(), by_face);
         for (Violation& v : *list)
-          if (v.rule == Rule::duplicate_simplex) v.face.clear();
+          if (v.rule == Rule::duplicate_simplex && !sharing_) v.face.clear();  // a share's are sort keys
       }
       for (Boundary_facet& b : boundary_) {
         std::array<std::uint32_t, D> f;
@@ -475,6 +693,7 @@ class Certifier {
     for (Violation& v : facet_fatal_) fail(std::move(v));
     std::vector<std::uint32_t>().swap(facet_count_);
     std::vector<Cell>().swap(rows_);
+    std::vector<std::size_t>().swap(row_of_);
     buckets_.reset();
   }
 
@@ -665,10 +884,14 @@ class Certifier {
     std::vector<std::vector<std::uint32_t>> counts(workers);
     std::vector<Facet_results> results(ranges);
     const std::size_t batch = 64 * std::size_t{workers};
-    for (std::size_t first = 0; first < ranges && !stop_facets(); first += batch) {
-      const std::size_t last = std::min(ranges, first + batch);
+    // A share walks its range of vertices when the walk is in the certifier's numbers.
+    std::size_t v_lo = 0, v_hi = n;
+    if (sharing_ && (renumbered() || to_work_.empty())) v_lo = lo_, v_hi = hi_;
+    const std::size_t first_range = v_lo >> shift, end_range = v_hi > v_lo ? ((v_hi - 1) >> shift) + 1 : first_range;
+    for (std::size_t first = first_range; first < end_range && !stop_facets(); first += batch) {
+      const std::size_t last = std::min(end_range, first + batch);
       for_each_parallel(last - first, [&](std::size_t i, unsigned worker) {
-        const std::size_t R = first + i, lo = R << shift, hi = std::min(n, lo + width);
+        const std::size_t R = first + i, lo = std::max(R << shift, v_lo), hi = std::min({n, (R << shift) + width, v_hi});
         const Row* begin = list.data() + offset[R * parts];
         const Row* end = list.data() + offset[(R + 1) * parts];
         // The facets per smallest vertex (counted here, from rows the filing
@@ -678,8 +901,8 @@ class Certifier {
         for (const Row* e = begin; e != end; ++e) {
           if (end - e > 16) __builtin_prefetch(&rows_[static_cast<std::size_t>(e[16])]);
           const auto [s0, s1] = smallest_two(rows_[static_cast<std::size_t>(*e)]);
-          if (s0 >= lo) count[s0 - lo] += D;
-          if (s1 < hi) ++count[s1 - lo];
+          if (s0 >= lo && s0 < hi) count[s0 - lo] += D;
+          if (s1 >= lo && s1 < hi) ++count[s1 - lo];
         }
         Facet_window<D, Row> window(count, lo, hi, storage[worker]);
         for (const Row* e = begin; e != end; ++e) {
@@ -731,6 +954,11 @@ class Certifier {
     }
   }
 
+  /// Whether rows_ keeps only the share's rows (in memory, a share of several).
+  bool compact() const { return sharing_ && share_.parts > 1 && !options_.stream; }
+  /// The row of an index into rows_ (a share keeps only its rows).
+  std::size_t row_number(std::size_t k) const { return row_of_.empty() ? k : row_of_[k]; }
+
   /// A facet of the certifier's numbers as reported: in the input's, increasing.
   std::vector<std::uint32_t> input_face(const std::array<std::uint32_t, D>& facet) const {
     std::vector<std::uint32_t> f(facet.begin(), facet.end());
@@ -747,28 +975,29 @@ class Certifier {
   template <class Row>
   void check_facet_group(std::uint32_t v, std::span<const Facet_record<D, Row>> g, Facet_results& out) const {
     if (!options_.all && !out.fatal.empty()) return;
+    if (!facet_in_share(v, g[0].rest)) return;
     std::array<std::uint32_t, D> facet;
     facet[0] = v;
     std::copy(g[0].rest.begin(), g[0].rest.end(), facet.begin() + 1);
     const auto face = [&] { return input_face(facet); };
     if (g.size() == 1) {
-      out.boundary.push_back({facet, g[0].apex, g[0].positive(), g[0].row()});
+      out.boundary.push_back({facet, g[0].apex, g[0].positive(), row_number(g[0].row())});
       return;
     }
     if (g.size() > 2) {
-      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
+      out.fatal.push_back({.rule = Rule::facet_shared_by_many, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face()});
       return;
     }
     const std::uint32_t a = g[0].apex, b = g[1].apex;
     if (a == b) {
-      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = g[0].row(), .other_simplex = g[1].row(),
-                           .face = renumbered() ? face() : std::vector<std::uint32_t>{}});
+      out.fatal.push_back({.rule = Rule::duplicate_simplex, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()),
+                           .face = renumbered() || sharing_ ? face() : std::vector<std::uint32_t>{}});
       return;
     }
     // Both rows were found proper: (facet, a) and (facet, b) have known, non-zero
     // orientations, and the apexes lie on opposite sides exactly when these differ.
     if (g[0].positive() == g[1].positive()) {
-      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face()});
+      out.fatal.push_back({.rule = Rule::facet_same_side, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face()});
       return;
     }
     ++out.interior_facets;
@@ -786,7 +1015,7 @@ class Certifier {
     s[1] = positive ? s1 : s0;
     const kernel::Oriented_side side = sphere_side(s);
     const auto witness = [&](Rule rule) {
-      return Violation{.rule = rule, .simplex = g[0].row(), .other_simplex = g[1].row(), .face = face(), .point = input_number(b)};
+      return Violation{.rule = rule, .simplex = row_number(g[0].row()), .other_simplex = row_number(g[1].row()), .face = face(), .point = input_number(b)};
     };
     if (side == kernel::ON_POSITIVE_SIDE) {
       out.delaunay.push_back(witness(Rule::not_locally_delaunay));
@@ -955,12 +1184,17 @@ class Certifier {
   std::vector<std::uint8_t> usable_;        // finite and a first occurrence (while the rows are read)
   std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex (streaming)
   std::size_t proper_rows_ = 0;             // rows found proper simplices
-  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory)
+  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory; a share: its valid rows)
+  std::vector<std::size_t> row_of_;         // a share's: the row of each of rows_
+  std::vector<std::uint8_t> mine_;          // a share's: its vertices, in the input's numbers
   std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)
   std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it
   Cell first_cell_{};                       // its vertices (input numbers), positively oriented
   std::vector<std::size_t> covering_;       // other rows that contain the witness
   std::vector<Boundary_facet> boundary_;    // facets of one simplex, in facet order (input numbers)
+  bool sharing_ = false;                    // run_share: one share of the work
+  Share share_{};
+  std::size_t lo_ = 0, hi_ = 0;             // the share's vertices (the certifier's numbers)
 };
 
 }  // namespace dewall::certify::detail
@@ -997,6 +1231,49 @@ Report certify(std::span<const typename K::Point_d> points, Simplex_source<K::di
 #else
     const kernel::Fp_environment_guard guard;
     return detail::Certifier<K>(k, points, options).run(simplices);
+#endif
+  }
+}
+
+/// One share of certify(): the checks Share names, for merge_shares, which
+/// makes of the shares' reports (all parts, each computed with the same points,
+/// rows and options) the report certify() gives. Each share reads every row; it
+/// checks those with a vertex in its range. For a certification split over
+/// processes (dewall-mpi certify).
+/// \throws std::invalid_argument when share.part >= share.parts; as certify().
+template <kernel::DelaunayKernel K>
+Share_report<K::dimension> certify_share(std::span<const typename K::Point_d> points, Simplex_source<K::dimension>& simplices,
+                                         Share share, const Options& options = {}, const K& k = {}) {
+  if (share.part >= share.parts) throw std::invalid_argument("certify_share: part " + std::to_string(share.part) + " of " + std::to_string(share.parts));
+  if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
+    return detail::certify_share_filtered<K::dimension>(points, simplices, share, options);
+  } else {
+#ifdef DEWALL_UNSAFE_FP_FLAGS
+    static_assert(detail::always_false<K>, "dewall: certify_share with a kernel other than Filtered_kernel_d: see certify()");
+    return {};
+#else
+    const kernel::Fp_environment_guard guard;
+    return detail::Certifier<K>(k, points, options).run_share(simplices, share);
+#endif
+  }
+}
+
+/// The report of certify() from the reports of all shares of certify_share
+/// (any order; Options::all as theirs). Checks the boundary (a few predicates
+/// per boundary facet). \throws std::invalid_argument when `shares` is empty.
+template <kernel::DelaunayKernel K>
+Report merge_shares(std::span<const typename K::Point_d> points, std::span<const Share_report<K::dimension>> shares,
+                    const Options& options = {}, const K& k = {}) {
+  if (shares.empty()) throw std::invalid_argument("merge_shares: no shares");
+  if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
+    return detail::merge_shares_filtered<K::dimension>(points, shares, options);
+  } else {
+#ifdef DEWALL_UNSAFE_FP_FLAGS
+    static_assert(detail::always_false<K>, "dewall: merge_shares with a kernel other than Filtered_kernel_d: see certify()");
+    return {};
+#else
+    const kernel::Fp_environment_guard guard;
+    return detail::Certifier<K>(k, points, options).merge_shares(shares);
 #endif
   }
 }

@@ -1,0 +1,151 @@
+// certify_share and merge_shares: the reports of a certification split into
+// 1 to 4 shares, merged (in any order), equal certify()'s report, on dewall's
+// triangulations and their mutants, for the first violation and for --all, in
+// the certifier's numbering and the input's, in memory and streaming.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dewall/certify/certify.hpp"
+#include "dewall/dewall.hpp"
+#include "support/certify_mutants.hpp"
+#include "support/dewall_point_sets.hpp"
+
+namespace certify = dewall::certify;
+namespace kernel = dewall::kernel;
+
+namespace {
+
+template <int D>
+using Rows = std::vector<std::array<std::uint32_t, D + 1>>;
+
+/// What a report says; its counts too when the walk went through every
+/// facet (Delaunay, or --all): else they count as far as the walk went.
+std::string dump(const certify::Report& r, bool all) {
+  std::string s = "delaunay " + std::to_string(r.delaunay) + " canonical " + std::to_string(r.canonical) + " points " +
+                  std::to_string(r.points) + " distinct " + std::to_string(r.distinct_points) + " simplices " +
+                  std::to_string(r.simplices) + "\n";
+  if (r.delaunay || all)
+    s += "interior " + std::to_string(r.interior_facets) + " boundary " + std::to_string(r.boundary_facets) +
+         " cospherical " + std::to_string(r.cospherical_facets) + "\n";
+  for (const auto& v : r.violations) s += certify::describe(v) + "\n";
+  return s;
+}
+
+/// certify() and the merged shares agree, for 1 to 4 shares.
+template <int D>
+void same_merged_report(const std::vector<kernel::Point_d<D>>& p, const Rows<D>& t, const std::string& what,
+                        std::mt19937_64& rng) {
+  using K = kernel::Filtered_kernel_d<D>;
+  const std::span<const kernel::Point_d<D>> points(p);
+  const std::span<const std::array<std::uint32_t, D + 1>> rows(t);
+  const std::vector<certify::Options> variants = {
+      {.threads = 1},
+      {.threads = 1, .spatial_order = false},
+      {.threads = 2, .working_memory = 2048},
+      {.threads = 1, .stream = true, .working_memory = 2048},
+  };
+  for (bool all : {false, true})
+    for (std::size_t k = 0; k < variants.size(); ++k) {
+      certify::Options options = variants[k];
+      options.all = all;
+      INFO(what << " (D = " << D << ", " << p.size() << " points, " << t.size() << " rows), all " << all << ", variant " << k);
+      const std::string expected = dump(certify::certify<K>(points, rows, options), all);
+      for (std::size_t parts = 1; parts <= 4; ++parts) {
+        INFO(parts << " shares");
+        std::vector<certify::Share_report<D>> shares;
+        for (std::size_t part = 0; part < parts; ++part) {
+          certify::Span_source<D> source(rows);
+          shares.push_back(certify::certify_share<K>(points, source, {part, parts}, options));
+        }
+        std::shuffle(shares.begin(), shares.end(), rng);
+        CHECK(dump(certify::merge_shares<K>(points, std::span<const certify::Share_report<D>>(shares), options), all) == expected);
+      }
+    }
+}
+
+template <int D>
+void same_merged_reports_with_mutants(const std::vector<kernel::Point_d<D>>& p, const std::string& what, std::mt19937_64& rng) {
+  const Rows<D> t = dewall::triangulate<D>(p, dewall::Options{.engine = dewall::Engine::dewall}).simplices;
+  same_merged_report<D>(p, t, what, rng);
+  dewall::test::for_each_mutant<D>(p.size(), t, rng, [&](const std::string& name, const Rows<D>& m) {
+    same_merged_report<D>(p, m, what + ", " + name, rng);
+  });
+  // Points that are not finite, in two shares' parts, and a later duplicate used.
+  std::vector<kernel::Point_d<D>> q = p;
+  q[p.size() / 3][0] = NAN;
+  q[p.size() / 2][D - 1] = INFINITY;
+  same_merged_report<D>(q, t, what + ", two points not finite", rng);
+  q = p;
+  q.push_back(q[t[t.size() / 2][0]]);
+  Rows<D> u = t;
+  u[t.size() / 2][0] = static_cast<std::uint32_t>(p.size());
+  same_merged_report<D>(q, u, what + ", a later duplicate used", rng);
+}
+
+/// A k × k grid of unit squares, each cut along a random diagonal: Delaunay,
+/// with many cospherical facets resolved against the perturbation (notes).
+std::pair<std::vector<kernel::Point_d<2>>, Rows<2>> random_diagonals(std::uint32_t k, std::mt19937_64& rng) {
+  std::vector<kernel::Point_d<2>> p;
+  for (std::uint32_t i = 0; i <= k; ++i)
+    for (std::uint32_t j = 0; j <= k; ++j) p.push_back({double(i), double(j)});
+  Rows<2> t;
+  for (std::uint32_t i = 0; i < k; ++i)
+    for (std::uint32_t j = 0; j < k; ++j) {
+      const std::uint32_t a = i * (k + 1) + j, b = a + k + 1, c = a + 1, d = b + 1;
+      if (rng() % 2) t.insert(t.end(), {{a, b, d}, {a, d, c}});
+      else t.insert(t.end(), {{a, b, c}, {b, d, c}});
+    }
+  std::shuffle(t.begin(), t.end(), rng);
+  return {p, t};
+}
+
+}  // namespace
+
+TEST_CASE("certify shares: merged, the report of certify, with notes, mutants", "[certify][shares]") {
+  std::mt19937_64 rng(6166);
+  for (int round = 0; round < 3; ++round) {
+    const auto [p, t] = random_diagonals(12, rng);
+    same_merged_report<2>(p, t, "random diagonals", rng);
+    dewall::test::for_each_mutant<2>(p.size(), t, rng, [&](const std::string& name, const Rows<2>& m) {
+      same_merged_report<2>(p, m, "random diagonals, " + name, rng);
+    });
+  }
+}
+
+TEST_CASE("certify shares: merged, the report of certify, 2D, mutants", "[certify][shares]") {
+  std::mt19937_64 rng(6164);
+  same_merged_reports_with_mutants<2>(dewall::test::uniform<2>(300, rng), "uniform", rng);
+  same_merged_reports_with_mutants<2>(dewall::test::lattice<2>(200), "lattice", rng);
+}
+
+TEST_CASE("certify shares: merged, the report of certify, 3D, mutants", "[certify][shares]") {
+  std::mt19937_64 rng(6167);
+  same_merged_reports_with_mutants<3>(dewall::test::uniform<3>(200, rng), "uniform", rng);
+  same_merged_reports_with_mutants<3>(dewall::test::cospherical<3>(true), "cospherical with centre", rng);
+  auto dup = dewall::test::uniform<3>(120, rng);
+  for (std::size_t i = 0; i < 40; ++i) dup.push_back(dup[static_cast<std::size_t>(rng() % dup.size())]);
+  same_merged_reports_with_mutants<3>(dup, "with duplicates", rng);
+}
+
+TEST_CASE("certify shares: merged, the report of certify, 4D, mutants", "[certify][shares]") {
+  std::mt19937_64 rng(6165);
+  same_merged_reports_with_mutants<4>(dewall::test::lattice<4>(81), "lattice", rng);
+  same_merged_reports_with_mutants<4>(dewall::test::uniform<4>(80, rng), "uniform", rng);
+}
+
+TEST_CASE("certify shares: a share out of range is refused", "[certify][shares]") {
+  const std::vector<kernel::Point_d<2>> p = {{0, 0}, {1, 0}, {0, 1}};
+  const Rows<2> t = {{0, 1, 2}};
+  certify::Span_source<2> source{std::span<const std::array<std::uint32_t, 3>>(t)};
+  CHECK_THROWS_AS(certify::certify_share<kernel::Filtered_kernel_d<2>>(std::span<const kernel::Point_d<2>>(p), source, {2, 2}),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(certify::merge_shares<kernel::Filtered_kernel_d<2>>(std::span<const kernel::Point_d<2>>(p), {}),
+                  std::invalid_argument);
+}
