@@ -192,6 +192,40 @@ class Static_filter_d {
                                                            std::uint32_t& box_bound_left) const {
     return *sphere_through_filters<true, Semi_static_first>(p, &box_bound_left);
   }
+  /// The static bound's decision on a sphere test's determinant computed by
+  /// the caller as side_of_oriented_sphere_sign computes it: the recipe's
+  /// matrix<T> and determinant<T> with the same operations on each value
+  /// (T double, or a vector of doubles whose every lane is one test:
+  /// elementwise IEEE operations round each lane as the scalar ones would),
+  /// so the derivation's bound holds for it. The first stage of
+  /// side_of_oriented_sphere_sign<false>: when it gives nothing, that
+  /// function decides (and counts the test in box_bound_left).
+  [[gnu::always_inline]] Maybe_sign side_of_oriented_sphere_box_decision(double det) const {
+    if (!valid_) return std::nullopt;
+    return static_decision<Side_of_sphere_recipe<D>>(det, sphere_bound_);
+  }
+  /// The semi-static bound (semi_static_decision) of a sphere test whose
+  /// matrix's column maxima max_i |m_ij| (exact, by any means) the caller
+  /// has: T double, or a vector of doubles (one test a lane, each lane
+  /// rounded as the scalar computation). 3D.
+  template <class T>
+  [[gnu::always_inline]] static T side_of_oriented_sphere_semi_static_bound(const std::array<T, D + 1>& maxima) {
+    return semi_static_bound<Side_of_sphere_recipe<D>>(maxima);
+  }
+  /// Its decision on the test's determinant (computed as for
+  /// side_of_oriented_sphere_box_decision), or nothing.
+  [[gnu::always_inline]] static Maybe_sign side_of_oriented_sphere_semi_static_decision(double det, double bound) {
+    return bound_decision<Side_of_sphere_recipe<D>>(det, bound);
+  }
+  /// side_of_oriented_sphere_sign<Semi_static_first> given the test's matrix
+  /// and determinant (computed as for side_of_oriented_sphere_box_decision):
+  /// the same stages, the same answer and count. \pre valid().
+  template <bool Semi_static_first>
+  [[gnu::always_inline]] Sign side_of_oriented_sphere_sign_from(const Sphere_points<D>& p,
+                                                                const Matrix<double, D + 1>& m, double det,
+                                                                std::uint32_t& box_bound_left) const {
+    return *sphere_after_determinant<true, Semi_static_first>(p, m, det, &box_bound_left);
+  }
   /// The same through the static and the semi-static filter only (on the
   /// same determinant): a sign when one of them proves it, else nothing —
   /// for a caller to whom an undecided test costs less than the exact stages.
@@ -244,6 +278,14 @@ class Static_filter_d {
     }
     const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
     const double det = determinant<double, Recipe::size>(m);
+    return sphere_after_determinant<Every_stage, Semi_static_first>(p, m, det, box_bound_left);
+  }
+  /// sphere_through_filters once the matrix and its determinant are known. \pre valid_.
+  template <bool Every_stage, bool Semi_static_first>
+  [[gnu::always_inline]] Maybe_sign sphere_after_determinant(const Sphere_points<D>& p,
+                                                             const Matrix<double, D + 1>& m, double det,
+                                                             std::uint32_t* box_bound_left) const {
+    using Recipe = Side_of_sphere_recipe<D>;
     if constexpr (Semi_static_first && D == 3) {
       if (const auto s = semi_static_decision<Recipe>(m, det)) return s;
       // The box's bound, never tighter, still decides a lattice's zeros (exact_).
@@ -285,9 +327,18 @@ class Static_filter_d {
   template <class Recipe>
   [[gnu::always_inline]] Maybe_sign semi_static_decision(const Matrix<double, Recipe::size>& m, double det) const {
     constexpr int K = Recipe::size;
-    double bound = Recipe::epsilon;
-    for (int j = 0; j < K; ++j) bound *= stages::column_max<K>(m, j);
-    bound += underflow_floor;
+    std::array<double, K> maxima;
+    for (int j = 0; j < K; ++j) maxima[static_cast<std::size_t>(j)] = stages::column_max<K>(m, j);
+    return bound_decision<Recipe>(det, semi_static_bound<Recipe>(maxima));
+  }
+  template <class Recipe, class T>
+  [[gnu::always_inline]] static T semi_static_bound(const std::array<T, Recipe::size>& maxima) {
+    T bound = T{} + Recipe::epsilon;
+    for (const T& column_max : maxima) bound = bound * column_max;
+    return bound + underflow_floor;
+  }
+  template <class Recipe>
+  [[gnu::always_inline]] static Maybe_sign bound_decision(double det, double bound) {
     if (det > bound) return Recipe::sign_adjust;
     if (det < -bound) return -Recipe::sign_adjust;
     return std::nullopt;
