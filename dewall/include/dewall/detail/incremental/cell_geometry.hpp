@@ -7,11 +7,9 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <climits>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <vector>
 
 #include "dewall/detail/common/index.hpp"
@@ -83,80 +81,27 @@ class Cell_geometry {
     if (s != kernel::ZERO) return s == kernel::POSITIVE;
     return exact_zero_perturbed(refs);
   }
-  /// Two sphere tests computed at once (pair_sphere_tests): their static
-  /// filter determinants and, when the semi-static bound goes first, its
-  /// bounds.
-  struct Paired_tests {
-    std::array<double, 2> det, bound;
-  };
-#if defined(__GNUC__)
-  /// Two doubles, one sphere test each (GCC's and Clang's vector extension:
-  /// SSE2's packed instructions on the x86-64 baseline, other targets' own).
-  using Lanes = double __attribute__((vector_size(16)));
-  using Lane_bits = std::int64_t __attribute__((vector_size(16)));
-  /// Whether pair_sphere_tests exists.
-  static constexpr bool paired_sphere_tests = D == 3;
-  /// The static filter's determinants of the sphere tests of finite cells a
-  /// and b with q, both at once, and with Semi_static_first the semi-static
-  /// bounds: the recipe's matrix and determinant over Lanes, lane k the test
-  /// of cell k bit for bit (each elementwise operation rounds as the scalar
-  /// one; no fused multiply-add, as in the scalar code). Half the
-  /// arithmetic instructions of two tests.
+  /// Whether find_cavity computes its sphere tests in pairs (pair_sphere_tests).
+  static constexpr bool paired_sphere_tests = kernel::Static_filter_d<D>::pairs_sphere_tests;
+  using Sphere_pair = typename kernel::Static_filter_d<D>::Sphere_pair;
+  /// The sphere tests of finite cells a and b with q, computed together up
+  /// to their first bound, for sphere_holds_given. \pre static_filter_.valid().
   template <bool Semi_static_first>
-  [[gnu::always_inline]] Paired_tests pair_sphere_tests(std::size_t a, std::size_t b, const Point& q) const {
-    const auto& va = store_[a].v;
-    const auto& vb = store_[b].v;
-    const auto m = kernel::Side_of_sphere_recipe<D>::template matrix<Lanes>([&](int i, int j) -> Lanes {
-      if (i == D + 1) return Lanes{q.x[j], q.x[j]};
-      return Lanes{points_[va[i]].x[j], points_[vb[i]].x[j]};
-    });
-    const Lanes det = kernel::determinant<Lanes, D + 1>(m);
-    Paired_tests tests{{det[0], det[1]}, {}};
-    if constexpr (Semi_static_first) {
-      // Column maxima of magnitudes (exact): the sign bit masked off, the
-      // larger selected by the comparison's mask.
-      const Lane_bits magnitude = ~(Lane_bits{} + std::numeric_limits<std::int64_t>::min());
-      std::array<Lanes, D + 1> maxima{};
-      for (std::size_t i = 0; i <= D; ++i)
-        for (std::size_t j = 0; j <= D; ++j) {
-          const Lane_bits x = std::bit_cast<Lane_bits>(m[i][j]) & magnitude;
-          const Lane_bits larger = maxima[j] < std::bit_cast<Lanes>(x);
-          maxima[j] = std::bit_cast<Lanes>((x & larger) | (std::bit_cast<Lane_bits>(maxima[j]) & ~larger));
-        }
-      const Lanes bound = kernel::Static_filter_d<D>::side_of_oriented_sphere_semi_static_bound(maxima);
-      tests.bound = {bound[0], bound[1]};
-    }
-    return tests;
+  [[gnu::always_inline]] Sphere_pair pair_sphere_tests(std::size_t a, std::size_t b, const Point& q) const {
+    return kernel::Static_filter_d<D>::template side_of_oriented_sphere_pair<Semi_static_first>(
+        [&](int k, int i) -> const Point& { return i == D + 1 ? q : points_[store_[k == 0 ? a : b].v[i]]; });
   }
-#else
-  static constexpr bool paired_sphere_tests = false;
-  template <bool Semi_static_first>
-  Paired_tests pair_sphere_tests(std::size_t, std::size_t, const Point&) const { return {}; }
-#endif
-  /// sphere_holds<Semi_static_first> for finite cell c, given its test's
-  /// determinant and bound from pair_sphere_tests: the same answer and
-  /// counts; when the first bound leaves the test, the rest of the cascade
-  /// on its matrix (computed again: the same values) and determinant.
+  /// sphere_holds<Semi_static_first>(c, q, tally) given c's test from
+  /// pair_sphere_tests: the same answer and counts (3D).
   template <bool Semi_static_first>
   [[gnu::always_inline]] bool sphere_holds_given(std::size_t c, const Point& q, double det, double bound,
                                                  Filter_tally& tally) const {
     ++tally.tests;
     const auto refs = sphere_points(c, q);
-    kernel::Maybe_sign s = Semi_static_first ? static_filter_.side_of_oriented_sphere_semi_static_decision(det, bound)
-                                             : static_filter_.side_of_oriented_sphere_box_decision(det);
-    if (!s) s = undecided_pair_test<Semi_static_first>(refs, det, tally);
-    if (*s != kernel::ZERO) return *s == kernel::POSITIVE;
+    const kernel::Sign s =
+        static_filter_.template side_of_oriented_sphere_sign_given<Semi_static_first>(refs, det, bound, tally.box_bound_left);
+    if (s != kernel::ZERO) return s == kernel::POSITIVE;
     return exact_zero_perturbed(refs);
-  }
-  /// sphere_holds_given's rest of the cascade. Out of line: on volume data
-  /// the first bound decides nearly every test.
-  template <bool Semi_static_first>
-  [[gnu::noinline]] kernel::Sign undecided_pair_test(const kernel::Sphere_points<D>& refs, double det,
-                                                     Filter_tally& tally) const {
-    const auto m = kernel::Side_of_sphere_recipe<D>::template matrix<double>(
-        [&](int i, int j) { return (*refs[static_cast<std::size_t>(i)])[j]; });
-    return static_filter_.template side_of_oriented_sphere_sign_from<Semi_static_first>(refs, m, det,
-                                                                                         tally.box_bound_left);
   }
 
   /// sphere_holds for an exact zero: the perturbation's orientations,
