@@ -242,10 +242,8 @@ class Bowyer_watson : public Cell_geometry<D> {
 
   template <bool Zoned, bool Semi_static_first>
   bool find_cavity(Worker& w, const Point& q, Index v, Filter_tally& tally) {
-    // The sphere tests in pairs need the static filter's bounds (3D). Only
-    // where the box's bound goes first: in the semi-static bound's windows
-    // (surface samples) pairing cost a torus with noise more than it saved.
-    const bool pairing = Base::paired_sphere_tests && !Semi_static_first && static_filter_.valid();
+    // The sphere tests in pairs need the static filter's bounds (3D).
+    const bool pairing = Base::paired_sphere_tests && static_filter_.valid();
     w.cavity.clear();
     w.boundary.clear();
     const std::size_t start_cell = start_of_cavity<Zoned>(w, q);
@@ -284,7 +282,7 @@ class Bowyer_watson : public Cell_geometry<D> {
       // distinct cells), so the loop asks exactly the tests paired here.
       std::array<double, D + 1> det, bound;
       std::uint32_t paired = 0;  // bit i: det[i], bound[i] hold neighbour i's test
-      if constexpr (Base::paired_sphere_tests && !Semi_static_first) {
+      if constexpr (Base::paired_sphere_tests) {
         if (pairing) {
           std::array<int, D + 1> tested;
           int count = 0;
