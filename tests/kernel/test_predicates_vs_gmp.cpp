@@ -1043,3 +1043,122 @@ TEST_CASE("static filter at UTM offsets: the same decisions as at the origin, as
   CHECK(decided > cases * 2 / 3 * 9 / 10);
   CHECK(tie_zeros > ties * 9 / 10);
 }
+
+namespace {
+
+/// How far down side_of_oriented_sphere_sign_given the paired tests went.
+struct Pair_tally {
+  int tests = 0, first_bound_left = 0, exact_zero = 0;
+};
+
+/// Both lanes of side_of_oriented_sphere_pair (simplices points[0 … 3] and
+/// points[4 … 7], query points[8]) against the scalar computation of the
+/// same test and its answer against GMP's, the first bound's decision and
+/// the undecided path through side_of_oriented_sphere_sign_given alike.
+template <bool Semi_static_first>
+void check_sphere_pair(const Static_filter_d<3>& filter, const std::vector<Point<3>>& points, Pair_tally& tally) {
+  using Recipe = Side_of_sphere_recipe<3>;
+  std::array<Sphere_points<3>, 2> refs;
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t i = 0; i < 4; ++i) refs[k][i] = &points[4 * k + i];
+    refs[k][4] = &points[8];
+  }
+  const auto pair = Static_filter_d<3>::template side_of_oriented_sphere_pair<Semi_static_first>(
+      [&](int k, int i) -> const Point<3>& { return *refs[static_cast<std::size_t>(k)][static_cast<std::size_t>(i)]; });
+  for (std::size_t k = 0; k < 2; ++k) {
+    INFO("lane " << k << (Semi_static_first ? ", semi-static bound first" : ", box bound first"));
+    const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*refs[k][static_cast<std::size_t>(i)])[j]; });
+    const double det = determinant<double, Recipe::size>(m);
+    std::array<double, Recipe::size> maxima{};
+    for (const auto& row : m)
+      for (std::size_t j = 0; j < maxima.size(); ++j) maxima[j] = std::max(maxima[j], std::abs(row[j]));
+    const double bound = Static_filter_d<3>::side_of_oriented_sphere_semi_static_bound(maxima);
+#ifndef __FP_FAST_FMA  // where this file's scalar code may be contracted, only the signs must agree
+    // The lane is the scalar computation, bit for bit.
+    CHECK(std::bit_cast<std::uint64_t>(pair.det[k]) == std::bit_cast<std::uint64_t>(det));
+    if (Semi_static_first) CHECK(std::bit_cast<std::uint64_t>(pair.bound[k]) == std::bit_cast<std::uint64_t>(bound));
+#endif
+    std::array<Point<3>, 4> simplex;
+    for (std::size_t i = 0; i < 4; ++i) simplex[i] = *refs[k][i];
+    const int expected = dewall::test::gmp_side_of_oriented_sphere<3>(simplex, points[8]);
+    std::uint32_t left_given = 0, left_scalar = 0;
+    const Sign given = filter.template side_of_oriented_sphere_sign_given<Semi_static_first>(
+        refs[k], pair.det[k], pair.bound[k], left_given);
+    CHECK(static_cast<int>(given) == expected);
+    CHECK(static_cast<int>(filter.template side_of_oriented_sphere_sign<Semi_static_first>(refs[k], left_scalar)) ==
+          expected);
+    CHECK(left_given == left_scalar);
+    if (Semi_static_first) {
+      const bool decided = pair.det[k] > pair.bound[k] || pair.det[k] < -pair.bound[k];
+      if (decided) CHECK((pair.det[k] > 0 ? -1 : 1) == expected);  // D = 3: the determinant's sign reversed
+      tally.first_bound_left += !decided;
+    } else {
+      tally.first_bound_left += static_cast<int>(left_given);
+    }
+    ++tally.tests;
+    tally.exact_zero += expected == 0;
+  }
+}
+
+}  // namespace
+
+TEST_CASE("static filter, sphere tests in pairs: each lane the scalar test, as GMP decides them",
+          "[gmp][predicates]") {
+  const auto seed = dewall::test::test_seed(0x9a125);
+  INFO("seed " << seed << " (set DEWALL_TEST_SEED to reproduce)");
+  Rng rng(seed);
+  const std::array<double, 3> unit_lo{0, 0, 0}, unit_hi{1, 1, 1};
+  const std::array<double, 3> int_lo{-1000, -1000, -1000}, int_hi{1000, 1000, 1000};
+  // A lidar tile's offsets (x ≈ 5·10^5, y ≈ 5·10^6 metres) on a 0.5 m grid.
+  const std::array<double, 3> utm_lo{463000, 4963000, 0}, utm_hi{464000, 4964000, 1000};
+  const Static_filter_d<3> unit(unit_lo, unit_hi), integers(int_lo, int_hi), utm(utm_lo, utm_hi);
+  // On the integers in [0, 640]^3 the box's bound decides every test exactly, zeros included.
+  const std::array<double, 3> lattice_lo{0, 0, 0}, lattice_hi{640, 640, 640};
+  const Static_filter_d<3> lattice(lattice_lo, lattice_hi, 0);
+  REQUIRE(unit.valid());
+  REQUIRE(utm.valid());
+  REQUIRE(lattice.exact());
+  Pair_tally box_first, semi_static_first;
+  for (int c = 0; c < 600; ++c) {
+    const int family = c % 6;
+    std::vector<Point<3>> points;
+    const Static_filter_d<3>* filter = &integers;
+    switch (family) {
+      case 0:  // random, in the unit cube
+        points = dewall::test::uniform_points<3>(rng, 9, 0, 1);
+        filter = &unit;
+        break;
+      case 1:  // on one sphere: every test zero
+      case 2:  // the same, one coordinate moved by one ulp
+        points = dewall::test::cospherical_integer_points<3>(rng, 9, 12, 3);
+        if (family == 2) dewall::test::nudge_ulps<3>(rng, points);
+        break;
+      case 3:  // a small cluster of integers: coplanar, cospherical, ties of every kind
+        points = dewall::test::lattice_points<3>(rng, 9, -2, 2);
+        break;
+      case 4:  // the same on the exact lattice filter's box
+        points = dewall::test::lattice_points<3>(rng, 9, 300, 304);
+        filter = &lattice;
+        break;
+      default:  // a cluster on a 0.5 m grid at UTM offsets, every other one on one sphere
+        points = c % 12 == 5 ? dewall::test::cospherical_integer_points<3>(rng, 9, 12, 3)
+                             : dewall::test::lattice_points<3>(rng, 9, -8, 8);
+        for (auto& p : points) p.x = {463500 + 0.5 * p[0], 4963500 + 0.5 * p[1], 250 + 0.5 * p[2]};
+        filter = &utm;
+    }
+    if (points.size() < 9) continue;
+    INFO("family " << family << "\n" << dewall::test::format_points<3>(points));
+    check_sphere_pair<false>(*filter, points, box_first);
+    check_sphere_pair<true>(*filter, points, semi_static_first);
+    // One test in both lanes, as a cell with an odd number of neighbours to test pairs it.
+    std::vector<Point<3>> twice = points;
+    std::copy(points.begin(), points.begin() + 4, twice.begin() + 4);
+    check_sphere_pair<true>(*filter, twice, semi_static_first);
+  }
+  // Both ways through side_of_oriented_sphere_sign_given were taken, ties among them.
+  for (const Pair_tally* tally : {&box_first, &semi_static_first}) {
+    CHECK(tally->first_bound_left > tally->tests / 10);
+    CHECK(tally->first_bound_left < tally->tests * 9 / 10);
+    CHECK(tally->exact_zero > tally->tests / 10);
+  }
+}

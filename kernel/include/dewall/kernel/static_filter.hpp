@@ -74,7 +74,9 @@
 #include <bit>
 #include <climits>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 
 #include "dewall/kernel/floating_point.hpp"
@@ -192,6 +194,84 @@ class Static_filter_d {
                                                            std::uint32_t& box_bound_left) const {
     return *sphere_through_filters<true, Semi_static_first>(p, &box_bound_left);
   }
+  /// Whether side_of_oriented_sphere_pair computes its two tests at once
+  /// (GCC's and Clang's vector extension, 3D) rather than one after the other.
+#if defined(__GNUC__)
+  static constexpr bool pairs_sphere_tests = D == 3;
+#else
+  static constexpr bool pairs_sphere_tests = false;
+#endif
+  /// Two sphere tests' computed determinants and semi-static bounds.
+  struct Sphere_pair {
+    std::array<double, 2> det, bound;
+  };
+  /// The determinants of two sphere tests as side_of_oriented_sphere_sign
+  /// computes them and, when Semi_static_first, their semi-static bounds
+  /// (only then: the box's bound needs none), for
+  /// side_of_oriented_sphere_sign_given; point(k, i) is test k's point i
+  /// (i = 0 … D + 1, the query last), by reference (a callable: two arrays of
+  /// pointers cost the cavity search's loop registers). Both at once: the
+  /// recipe's matrix and determinant over two-double vectors, lane k test k.
+  /// Each lane's operations are the scalar code's, each rounded once
+  /// (elementwise IEEE arithmetic; no flag that reassociates:
+  /// floating_point.hpp), so the derivation's bounds hold for each lane as
+  /// for the scalar value; a contracted multiply-add only drops a rounding.
+  /// The column maxima are exact however they are computed.
+  template <bool Semi_static_first, class Points>
+  [[gnu::always_inline]] static Sphere_pair side_of_oriented_sphere_pair(const Points& point) {
+    using Recipe = Side_of_sphere_recipe<D>;
+#if defined(__GNUC__)
+    if constexpr (pairs_sphere_tests) {
+      using Lanes = double __attribute__((vector_size(16)));
+      using Lane_bits = std::int64_t __attribute__((vector_size(16)));
+      const auto m = Recipe::template matrix<Lanes>([&](int i, int j) { return Lanes{point(0, i)[j], point(1, i)[j]}; });
+      const Lanes det = determinant<Lanes, Recipe::size>(m);
+      Sphere_pair pair{{det[0], det[1]}, {}};
+      if constexpr (Semi_static_first) {
+        // |x| by clearing the sign bit; the larger kept through the comparison's lane mask.
+        const Lane_bits magnitude = Lane_bits{} + std::numeric_limits<std::int64_t>::max();
+        std::array<Lanes, Recipe::size> maxima{};
+        for (const auto& row : m)
+          for (std::size_t j = 0; j < maxima.size(); ++j) {
+            const Lane_bits x = std::bit_cast<Lane_bits>(row[j]) & magnitude;
+            const Lane_bits larger = maxima[j] < std::bit_cast<Lanes>(x);
+            maxima[j] = std::bit_cast<Lanes>((x & larger) | (std::bit_cast<Lane_bits>(maxima[j]) & ~larger));
+          }
+        const Lanes bound = side_of_oriented_sphere_semi_static_bound(maxima);
+        pair.bound = {bound[0], bound[1]};
+      }
+      return pair;
+    }
+#endif
+    Sphere_pair pair{};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const auto m = Recipe::template matrix<double>([&](int i, int j) { return point(static_cast<int>(k), i)[j]; });
+      pair.det[k] = determinant<double, Recipe::size>(m);
+      if constexpr (Semi_static_first) {
+        std::array<double, Recipe::size> maxima;
+        for (int j = 0; j < Recipe::size; ++j) maxima[static_cast<std::size_t>(j)] = stages::column_max<Recipe::size>(m, j);
+        pair.bound[k] = side_of_oriented_sphere_semi_static_bound(maxima);
+      }
+    }
+    return pair;
+  }
+  /// side_of_oriented_sphere_sign<Semi_static_first>(p, box_bound_left),
+  /// given the test's det and bound from side_of_oriented_sphere_pair: the
+  /// same sign and count. \pre valid().
+  template <bool Semi_static_first>
+  [[gnu::always_inline]] Sign side_of_oriented_sphere_sign_given(const Sphere_points<D>& p, double det, double bound,
+                                                                 std::uint32_t& box_bound_left) const {
+    using Recipe = Side_of_sphere_recipe<D>;
+    const Maybe_sign s = Semi_static_first && D == 3 ? bound_decision<Recipe>(det, bound)
+                                                     : static_decision<Recipe>(det, sphere_bound_);
+    return s ? *s : sign_after_first_bound<Semi_static_first>(p, det, box_bound_left);
+  }
+  /// The semi-static bound ε·Π_j M̂_j + floor (semi_static_decision) from the
+  /// column maxima M̂_j, for T double or a vector of doubles (one test a lane).
+  template <class T>
+  [[gnu::always_inline]] static T side_of_oriented_sphere_semi_static_bound(const std::array<T, D + 1>& maxima) {
+    return semi_static_bound<Side_of_sphere_recipe<D>>(maxima);
+  }
   /// The same through the static and the semi-static filter only (on the
   /// same determinant): a sign when one of them proves it, else nothing —
   /// for a caller to whom an undecided test costs less than the exact stages.
@@ -234,6 +314,16 @@ class Static_filter_d {
     return std::nullopt;
   }
 
+  /// side_of_oriented_sphere_sign_given's stages after the first bound, on
+  /// the matrix computed again (the same values). Out of line: on volume data
+  /// the first bound decides nearly every test.
+  template <bool Semi_static_first>
+  [[gnu::noinline]] Sign sign_after_first_bound(const Sphere_points<D>& p, double det,
+                                                std::uint32_t& box_bound_left) const {
+    using Recipe = Side_of_sphere_recipe<D>;
+    const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
+    return *sphere_after_determinant<true, Semi_static_first>(p, m, det, &box_bound_left);
+  }
   template <bool Every_stage, bool Semi_static_first = false>
   [[gnu::always_inline]] Maybe_sign sphere_through_filters(const Sphere_points<D>& p,
                                                            std::uint32_t* box_bound_left = nullptr) const {
@@ -244,6 +334,14 @@ class Static_filter_d {
     }
     const auto m = Recipe::template matrix<double>([&](int i, int j) { return (*p[static_cast<std::size_t>(i)])[j]; });
     const double det = determinant<double, Recipe::size>(m);
+    return sphere_after_determinant<Every_stage, Semi_static_first>(p, m, det, box_bound_left);
+  }
+  /// sphere_through_filters once the matrix and its determinant are known. \pre valid_.
+  template <bool Every_stage, bool Semi_static_first>
+  [[gnu::always_inline]] Maybe_sign sphere_after_determinant(const Sphere_points<D>& p,
+                                                             const Matrix<double, D + 1>& m, double det,
+                                                             std::uint32_t* box_bound_left) const {
+    using Recipe = Side_of_sphere_recipe<D>;
     if constexpr (Semi_static_first && D == 3) {
       if (const auto s = semi_static_decision<Recipe>(m, det)) return s;
       // The box's bound, never tighter, still decides a lattice's zeros (exact_).
@@ -285,9 +383,18 @@ class Static_filter_d {
   template <class Recipe>
   [[gnu::always_inline]] Maybe_sign semi_static_decision(const Matrix<double, Recipe::size>& m, double det) const {
     constexpr int K = Recipe::size;
-    double bound = Recipe::epsilon;
-    for (int j = 0; j < K; ++j) bound *= stages::column_max<K>(m, j);
-    bound += underflow_floor;
+    std::array<double, K> maxima;
+    for (int j = 0; j < K; ++j) maxima[static_cast<std::size_t>(j)] = stages::column_max<K>(m, j);
+    return bound_decision<Recipe>(det, semi_static_bound<Recipe>(maxima));
+  }
+  template <class Recipe, class T>
+  [[gnu::always_inline]] static T semi_static_bound(const std::array<T, Recipe::size>& maxima) {
+    T bound = T{} + Recipe::epsilon;
+    for (const T& column_max : maxima) bound = bound * column_max;
+    return bound + underflow_floor;
+  }
+  template <class Recipe>
+  [[gnu::always_inline]] static Maybe_sign bound_decision(double det, double bound) {
     if (det > bound) return Recipe::sign_adjust;
     if (det < -bound) return -Recipe::sign_adjust;
     return std::nullopt;

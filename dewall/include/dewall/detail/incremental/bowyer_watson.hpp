@@ -242,6 +242,8 @@ class Bowyer_watson : public Cell_geometry<D> {
 
   template <bool Zoned, bool Semi_static_first>
   bool find_cavity(Worker& w, const Point& q, Index v, Filter_tally& tally) {
+    // The sphere tests in pairs need the static filter's bounds (3D).
+    const bool pairing = Base::paired_sphere_tests && static_filter_.valid();
     w.cavity.clear();
     w.boundary.clear();
     const std::size_t start_cell = start_of_cavity<Zoned>(w, q);
@@ -273,13 +275,41 @@ class Bowyer_watson : public Cell_geometry<D> {
         const Index far = store_[ref >> facet_bits].v[ref & facet_mask];
         if (far != infinite) __builtin_prefetch(&points_[far]);
       }
+      // The sphere tests of c's finite unmarked neighbours, two at a time
+      // up to their first bound (half the arithmetic instructions), before
+      // the loop below takes their answers in order. A neighbour's mark
+      // changes only at its own turn in that loop (c's neighbours are
+      // distinct cells), so the loop asks exactly the tests paired here.
+      std::array<double, D + 1> det, bound;
+      std::uint32_t paired = 0;  // bit i: det[i], bound[i] hold neighbour i's test
+      if constexpr (Base::paired_sphere_tests) {
+        if (pairing) {
+          std::array<int, D + 1> tested;
+          int count = 0;
+          for (int i = 0; i <= D; ++i) {
+            const std::size_t n = store_[c].n[i] >> facet_bits;
+            tested[static_cast<std::size_t>(count)] = i;
+            count += store_.mark(n) == 0 && !is_infinite(n);
+          }
+          // An odd one out goes with itself: both lanes its test.
+          for (int t = 0; t < count; t += 2) {
+            const int i = tested[static_cast<std::size_t>(t)], j = tested[static_cast<std::size_t>(t + 1 < count ? t + 1 : t)];
+            const auto tests = this->template pair_sphere_tests<Semi_static_first>(store_[c].n[i] >> facet_bits,
+                                                                                   store_[c].n[j] >> facet_bits, q);
+            det[i] = tests.det[0], det[j] = tests.det[1];
+            bound[i] = tests.bound[0], bound[j] = tests.bound[1];
+            paired |= 1u << i | 1u << j;
+          }
+        }
+      }
       for (int i = 0; i <= D; ++i) {
         const std::uint32_t ref = store_[c].n[i];
         const std::size_t n = ref >> facet_bits;
         std::uint8_t& n_mark = store_.mark(n);
         if (n_mark == in) continue;
         if (n_mark != out) {
-          if (this->template in_conflict<Semi_static_first>(n, q, tally)) {
+          if (paired >> i & 1 ? this->template sphere_holds_given<Semi_static_first>(n, q, det[i], bound[i], tally)
+                              : this->template in_conflict<Semi_static_first>(n, q, tally)) {
             // n shares a facet with c, whose vertices are all w's zone's: only its far vertex may not be.
             if constexpr (Zoned)
               if (!owns(w, store_[n].v[ref & facet_mask])) return false;

@@ -81,6 +81,29 @@ class Cell_geometry {
     if (s != kernel::ZERO) return s == kernel::POSITIVE;
     return exact_zero_perturbed(refs);
   }
+  /// Whether find_cavity computes its sphere tests in pairs (pair_sphere_tests).
+  static constexpr bool paired_sphere_tests = kernel::Static_filter_d<D>::pairs_sphere_tests;
+  using Sphere_pair = typename kernel::Static_filter_d<D>::Sphere_pair;
+  /// The sphere tests of finite cells a and b with q, computed together up
+  /// to their first bound, for sphere_holds_given. \pre static_filter_.valid().
+  template <bool Semi_static_first>
+  [[gnu::always_inline]] Sphere_pair pair_sphere_tests(std::size_t a, std::size_t b, const Point& q) const {
+    return kernel::Static_filter_d<D>::template side_of_oriented_sphere_pair<Semi_static_first>(
+        [&](int k, int i) -> const Point& { return i == D + 1 ? q : points_[store_[k == 0 ? a : b].v[i]]; });
+  }
+  /// sphere_holds<Semi_static_first>(c, q, tally) given c's test from
+  /// pair_sphere_tests: the same answer and counts (3D).
+  template <bool Semi_static_first>
+  [[gnu::always_inline]] bool sphere_holds_given(std::size_t c, const Point& q, double det, double bound,
+                                                 Filter_tally& tally) const {
+    ++tally.tests;
+    const auto refs = sphere_points(c, q);
+    const kernel::Sign s =
+        static_filter_.template side_of_oriented_sphere_sign_given<Semi_static_first>(refs, det, bound, tally.box_bound_left);
+    if (s != kernel::ZERO) return s == kernel::POSITIVE;
+    return exact_zero_perturbed(refs);
+  }
+
   /// sphere_holds for an exact zero: the perturbation's orientations,
   /// through the static filter first (the points are input points, in its
   /// box). Out of line: inlined, it slowed the cavity search on inputs that
