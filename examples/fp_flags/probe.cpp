@@ -5,7 +5,7 @@
 //
 //   probe write DIR   writes the degenerate point sets as DIR/NAME.xyz
 //   probe check DIR   triangulates each set, writes DIR/NAME.TAG.simplices and
-//                     compares them, as sets, with DIR/NAME.cgal (CGAL's cells,
+//                     compares them, as sets, with DIR/NAME.cgal.txt (CGAL's cells,
 //                     computed by the dewall CLI built with safe flags)
 // Built with -DPROBE_USER_KERNEL it triangulates through a user-defined kernel:
 // the header-only path, which must refuse unsafe flags at compile time.
@@ -153,7 +153,7 @@ bool check_set(const std::string& dir, const char* name) {
       file << '\n';
     }
   }
-  const bool same = read_simplices(out) == read_simplices(base + ".cgal");
+  const bool same = read_simplices(out) == read_simplices(base + ".cgal.txt");
   // The certifier, called from this file too: compiled in the library.
   const auto report = dewall::certify::certify<dewall::kernel::Filtered_kernel_d<D>>(points, t.simplices);
   std::printf("%-15s %zu points, %zu simplices: %s CGAL's cells; in-process certify: %s\n", name, points.size(),
