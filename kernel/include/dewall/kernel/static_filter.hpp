@@ -374,12 +374,8 @@ class Static_filter_d {
   ///  * a zero column gives det = 0 exactly, below the floor: undecided, as
   ///    any call this bound leaves, for the stages after it.
   /// So the surface samples' tests (most of which the box's bound leaves: a
-  /// surface's cells are small against its box: torus with noise, 10^6
-  /// points, 24.6 M of 44 M) cost no branch but the sign's. Engine driver,
-  /// one thread, alternated: that torus 3,133–3,169 → 3,074–3,083 ms, bubbles
-  /// 3·10^5 884–897 → 869–870, uniform 2·10^5 546–554 → 540–543, points on a
-  /// sphere 10^5 551–561 → 546–552. In 2D (uniform 10^6 +0.5–1 %, a circle
-  /// unchanged) the cascade's own filter stage stays.
+  /// surface's cells are small against its box) cost no branch but the
+  /// sign's. In 2D, where it did not pay, the cascade's own filter stage stays.
   template <class Recipe>
   [[gnu::always_inline]] Maybe_sign semi_static_decision(const Matrix<double, Recipe::size>& m, double det) const {
     constexpr int K = Recipe::size;
