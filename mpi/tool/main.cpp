@@ -600,6 +600,12 @@ int triangulate(MPI_Comm comm, const Arguments& args, Share share, int rank, int
       file->check();
     });
     step(comm, [&] { file->commit(); });
+    // An earlier run on more ranks left OUT.r<R>, …: removed, so that the set
+    // `certify --per-rank` reads (up to the first missing file) is this run's.
+    if (rank == 0) {
+      int stale = size;
+      while (::unlink(per_rank_name(args.output, std::to_string(stale)).c_str()) == 0) ++stale;
+    }
     write_seconds = MPI_Wtime() - t1;
   } else {
     // Rank 0 opens the output: a temporary, which every rank then writes
@@ -759,7 +765,8 @@ template <int D>
 std::vector<std::uint64_t> serialize(const dewall::certify::Share_report<D>& s) {
   const auto& r = s.report;
   std::vector<std::uint64_t> w = {r.distinct_points, r.simplices, r.interior_facets, r.boundary_facets,
-                                  r.cospherical_facets, s.first_row, r.violations.size(), s.boundary.size()};
+                                  r.cospherical_facets, s.first_row, r.violations.size(), s.boundary.size(),
+                                  s.share.part, s.share.parts, s.point_count, s.input_numbering ? 1u : 0u};
   w.insert(w.end(), s.first_cell.begin(), s.first_cell.end());
   for (const auto& v : r.violations) {
     w.insert(w.end(), {static_cast<std::uint64_t>(v.rule), v.simplex, v.other_simplex, v.point, v.face.size()});
@@ -787,6 +794,10 @@ dewall::certify::Share_report<D> deserialize(std::span<const std::uint64_t> w) {
   s.first_row = next();
   r.violations.resize(next());
   s.boundary.resize(next());
+  s.share.part = next();
+  s.share.parts = next();
+  s.point_count = next();
+  s.input_numbering = next() != 0;
   for (auto& v : s.first_cell) v = static_cast<std::uint32_t>(next());
   for (auto& v : r.violations) {
     v.rule = static_cast<dewall::certify::Rule>(next());
@@ -831,7 +842,12 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
   const std::uint64_t rows = files.first_row.back();
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
   const std::uint64_t memory = pages > 0 && page_size > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size) : 0;
-  if (rows != ~std::uint64_t{0} && memory > 0 && rows * (D + 1) * 4 > memory / 4) options.stream = true;
+  int stream = rows != ~std::uint64_t{0} && memory > 0 && rows * (D + 1) * 4 > memory / 4;
+  // Every share must be made the same way (a streaming share numbers its
+  // vertices as the input does, an in-memory one in Z order): one rank on a
+  // smaller node makes them all stream.
+  MPI_Allreduce(MPI_IN_PLACE, &stream, 1, MPI_INT, MPI_LOR, comm);
+  options.stream = stream != 0;
 
   std::vector<std::uint64_t> mine;
   step(comm, [&] {

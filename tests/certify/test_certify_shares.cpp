@@ -149,3 +149,26 @@ TEST_CASE("certify shares: a share out of range is refused", "[certify][shares]"
   CHECK_THROWS_AS(certify::merge_shares<kernel::Filtered_kernel_d<2>>(std::span<const kernel::Point_d<2>>(p), {}),
                   std::invalid_argument);
 }
+
+TEST_CASE("certify shares: a missing, repeated or differently made share is refused", "[certify][shares]") {
+  // A share missing could hide the only violation (a flipped edge here): the
+  // merge must refuse anything but every part once, made the same way.
+  using K = kernel::Filtered_kernel_d<2>;
+  std::mt19937_64 rng(6164);
+  const auto p = dewall::test::uniform<2>(200, rng);
+  const Rows<2> t = dewall::triangulate<2>(p).simplices;
+  const std::span<const kernel::Point_d<2>> points(p);
+  const auto share = [&](std::size_t part, std::size_t parts, bool stream) {
+    certify::Span_source<2> source{std::span<const std::array<std::uint32_t, 3>>(t)};
+    return certify::certify_share<K>(points, source, {part, parts}, {.stream = stream, .working_memory = stream ? 4096 : 0});
+  };
+  using Shares = std::vector<certify::Share_report<2>>;
+  const auto merged = [&](const Shares& s) { return certify::merge_shares<K>(points, std::span<const certify::Share_report<2>>(s)); };
+  CHECK(merged(Shares{share(0, 3, false), share(2, 3, false), share(1, 3, false)}).delaunay);
+  CHECK_THROWS_AS(merged(Shares{share(0, 3, false), share(1, 3, false)}), std::invalid_argument);
+  CHECK_THROWS_AS(merged(Shares{share(0, 2, false), share(0, 2, false)}), std::invalid_argument);
+  CHECK_THROWS_AS(merged(Shares{share(0, 2, false), share(1, 3, false)}), std::invalid_argument);
+  // One share streaming (vertices in input numbers), the other in Z order.
+  CHECK_THROWS_AS(merged(Shares{share(0, 2, true), share(1, 2, false)}), std::invalid_argument);
+  CHECK(merged(Shares{share(0, 2, true), share(1, 2, true)}).delaunay);
+}

@@ -146,9 +146,22 @@ done
 grep -q "^not delaunay" got.out || fail "certify: the last mutant not rejected"
 "$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.parts.txt --per-rank --canonical >got.out 2>&1 &&
   grep -q "^delaunay canonical: u3.parts.r\*.txt is the canonical" got.out || { fail "certify --per-rank"; cat got.out >&2; }
-awk 'NR == 100 { $2 = 17 } { print }' u3.parts.r1.txt >u3.mparts.r0.txt
+# A mutant of the whole set (every file but one vertex of one row as written).
+cp u3.parts.r0.txt u3.mparts.r0.txt
+cp u3.parts.r2.txt u3.mparts.r2.txt
+awk 'NR == 100 { $2 = 17 } { print }' u3.parts.r1.txt >u3.mparts.r1.txt
+cmp -s u3.parts.r1.txt u3.mparts.r1.txt && fail "certify --per-rank: the mutant is the original"
 "$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.mparts.txt --per-rank >got.out 2>/dev/null
 [ $? -eq 1 ] && grep -q "^not delaunay: u3.mparts.r\*.txt" got.out || { fail "certify --per-rank, a mutant"; cat got.out >&2; }
+# Fewer ranks to the same OUT: the earlier run's last file is removed, and the set is this run's.
+cp u3.parts.r0.txt u3.stale.r0.txt
+cp u3.parts.r1.txt u3.stale.r1.txt
+cp u3.parts.r2.txt u3.stale.r2.txt
+run 2 triangulate u3.dwpt -o u3.stale.txt --per-rank
+[ "$status" -eq 0 ] || { fail "triangulate --per-rank on 2 ranks over an earlier run on 3"; cat run.log >&2; }
+[ -e u3.stale.r2.txt ] && fail "triangulate --per-rank on 2 ranks left the third file of an earlier run"
+"$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.stale.txt --per-rank --canonical >got.out 2>&1 ||
+  { fail "certify --per-rank after a run on fewer ranks"; cat got.out >&2; }
 rm -f want.out got.out
 echo "certify: dewall certify's words and status on 1-3 ranks, canonical and mutants; --per-rank"
 

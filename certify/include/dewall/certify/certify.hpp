@@ -133,6 +133,13 @@ struct Share_report {
   std::vector<Boundary_facet<D>> boundary;
   std::size_t first_row = npos;     // the first proper simplex (the same in every share)
   Simplex_indices<D> first_cell{};  // its vertices, positively oriented
+  /// How it was made, for merge_shares to check that the shares fit: which
+  /// share, of how many points, and whether its ranges of vertices are in
+  /// the input's numbering (streaming, or Options::spatial_order off) or in
+  /// the certifier's Z order.
+  Share share{};
+  std::size_t point_count = 0;
+  bool input_numbering = false;
 };
 
 }  // namespace dewall::certify
@@ -208,7 +215,8 @@ class Certifier {
     sharing_ = true;
     share_ = share;
     Report r = run(source);
-    return {std::move(r), std::move(boundary_), first_row_, first_cell_};
+    return {std::move(r), std::move(boundary_), first_row_, first_cell_, share, points_.size(),
+            options_.stream || !options_.spatial_order};
   }
 
   /// The report of the whole from the reports of all its shares (any order):
@@ -743,9 +751,8 @@ class Certifier {
     const std::size_t n = points_.size();
     std::size_t total = 0;
     for (std::uint32_t c : facet_count_) total += c;
-    // A window's records take at most half the memory of the rows (16 MB at
-    // least), or the working memory when streaming: the working set stays
-    // within the input's own size.
+    // Streaming (the rows in memory take memory_facets_pass): a window's
+    // records take at most the working memory.
     const std::size_t budget = std::max<std::size_t>(1, stream_budget() / sizeof(Record));
     const std::size_t ranges =
         std::clamp<std::size_t>(std::max(std::min<std::size_t>(n / 4096, 256), 4 * (total / budget + 1)), 1, std::max<std::size_t>(n, 1));
@@ -1260,11 +1267,23 @@ Share_report<K::dimension> certify_share(std::span<const typename K::Point_d> po
 
 /// The report of certify() from the reports of all shares of certify_share
 /// (any order; Options::all as theirs). Checks the boundary (a few predicates
-/// per boundary facet). \throws std::invalid_argument when `shares` is empty.
+/// per boundary facet). \throws std::invalid_argument unless `shares` holds
+/// each part 0 … parts − 1 exactly once, all made of these points with the
+/// same numbering (a missing share or one made another way would let a
+/// violation go unseen).
 template <kernel::DelaunayKernel K>
 Report merge_shares(std::span<const typename K::Point_d> points, std::span<const Share_report<K::dimension>> shares,
                     const Options& options = {}, const K& k = {}) {
   if (shares.empty()) throw std::invalid_argument("merge_shares: no shares");
+  std::vector<bool> seen(shares.size(), false);
+  for (const auto& s : shares) {
+    if (s.share.parts != shares.size() || s.share.part >= s.share.parts || seen[s.share.part])
+      throw std::invalid_argument("merge_shares: the shares are not parts 0 to " + std::to_string(shares.size() - 1) +
+                                  " of " + std::to_string(shares.size()) + ", each once");
+    seen[s.share.part] = true;
+    if (s.point_count != points.size() || s.input_numbering != shares[0].input_numbering)
+      throw std::invalid_argument("merge_shares: the shares were not all made of these points with the same numbering");
+  }
   if constexpr (std::is_same_v<K, kernel::Filtered_kernel_d<K::dimension>>) {
     return detail::merge_shares_filtered<K::dimension>(points, shares, options);
   } else {

@@ -53,7 +53,8 @@ constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
 /// `max_table_bytes` (0: no limit) bounds the hash table: above it the points
 /// are taken in passes, each the points whose hash starts with the pass's bits
 /// (equal points have equal hashes, so they meet in one pass), at the cost of
-/// hashing every point once more per pass.
+/// hashing every point once more per pass. At most 2^16 passes: a bound below
+/// 16 bytes per 2^16 points is exceeded.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
 /// Complexity: O(n) expected comparisons, one table of 2n–4n 8-byte slots (a sort
 /// of indices cost far more: docs/engines.md), or of max_table_bytes and
