@@ -55,6 +55,17 @@ std::size_t count_of(std::string_view token, const std::string& name, std::size_
   return v;
 }
 
+/// The tokens of the next line that has any (a sectioned text format: gmsh,
+/// CGAL), into `t`, which views `line`. \throws Parse_error "NAME:
+/// truncated: the file ends in the WHAT" at the end of the input.
+void next_tokens(detail::Line_source& source, std::string& line, std::vector<std::string_view>& t, const std::string& name,
+                 const char* what) {
+  do {
+    if (!source.next(line)) throw Parse_error(name + ": truncated: the file ends in the " + what);
+    t = tokens_of(line);
+  } while (t.empty());
+}
+
 // ---------------------------------------------------------------- PLY
 
 enum class Ply_type { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
@@ -555,12 +566,7 @@ Msh_mesh read_msh(std::istream& in, const std::string& name, int type, int verti
   detail::Line_source source(in);
   std::string line;
   std::vector<std::string_view> t;
-  const auto next = [&](const char* what) {
-    do {
-      if (!source.next(line)) throw Parse_error(name + ": truncated: the file ends in the " + what);
-      t = tokens_of(line);
-    } while (t.empty());
-  };
+  const auto next = [&](const char* what) { next_tokens(source, line, t, name, what); };
   const auto number = [&](std::size_t i) {
     if (i >= t.size()) throw Parse_error(where(name, source.number()) + "too few values on the line");
     return count_of(t[i], name, source.number(), "number");
@@ -668,12 +674,7 @@ Cgal_triangulation read_cgal_triangulation(std::istream& in, const std::string& 
   detail::Line_source source(in);
   std::string line;
   std::vector<std::string_view> t;
-  const auto next = [&](const char* what) {
-    do {
-      if (!source.next(line)) throw Parse_error(name + ": truncated: the file ends in the " + what);
-      t = tokens_of(line);
-    } while (t.empty());
-  };
+  const auto next = [&](const char* what) { next_tokens(source, line, t, name, what); };
   const auto fail = [&](const std::string& what) { return Parse_error(where(name, source.number()) + what); };
   const auto number = [&](std::size_t i, const char* what) { return count_of(t.at(i), name, source.number(), what); };
   const auto full_dimensional = [&](std::size_t dimension, std::size_t ambient) {

@@ -160,7 +160,7 @@ TEST_CASE("certify shares: a missing, repeated or differently made share is refu
   const std::span<const kernel::Point_d<2>> points(p);
   const auto share = [&](std::size_t part, std::size_t parts, bool stream) {
     certify::Span_source<2> source{std::span<const std::array<std::uint32_t, 3>>(t)};
-    return certify::certify_share<K>(points, source, {part, parts}, {.stream = stream, .working_memory = stream ? 4096 : 0});
+    return certify::certify_share<K>(points, source, {part, parts}, {.stream = stream, .working_memory = stream ? std::size_t{4096} : std::size_t{0}});
   };
   using Shares = std::vector<certify::Share_report<2>>;
   const auto merged = [&](const Shares& s) { return certify::merge_shares<K>(points, std::span<const certify::Share_report<2>>(s)); };

@@ -308,6 +308,18 @@ TEST_CASE("CGAL builders: CGAL's constructor forms and classes derived from the 
   }
 }
 
+namespace {
+/// Flips the first interior facet of a 3D triangulation that CGAL can flip
+/// (its two cells' union convex): the result is no longer Delaunay.
+template <class DT>
+bool flip_a_finite_facet(DT& dt) {
+  for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end(); ++c)
+    for (int i = 0; i < 4; ++i)
+      if (!dt.is_infinite(c->neighbor(i)) && dt.flip(c, i)) return true;
+  return false;
+}
+}  // namespace
+
 // dewall::cgal::certify on CGAL's own triangulations (certify/include/dewall/certify/cgal.hpp):
 // accepted as canonical, and rejected once an edge (2D) or a facet (3D) is flipped.
 TEST_CASE("dewall::cgal::certify: CGAL's triangulations certified in place, flipped ones rejected", "[cgal][certify]") {
@@ -354,11 +366,7 @@ TEST_CASE("dewall::cgal::certify: CGAL's triangulations certified in place, flip
     const auto report = dewall::cgal::certify(dt);
     CHECK((report.delaunay && report.canonical));
     CHECK(report.simplices == dt.number_of_finite_cells());
-    bool flipped = false;
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end() && !flipped; ++c)
-      for (int i = 0; i < 4 && !flipped; ++i)
-        if (!dt.is_infinite(c->neighbor(i))) flipped = dt.flip(c, i);
-    REQUIRE(flipped);
+    REQUIRE(flip_a_finite_facet(dt));
     const auto flipped_report = dewall::cgal::certify(dt, {.all = true});
     CHECK_FALSE(flipped_report.delaunay);
     REQUIRE(flipped_report.first_fatal());
@@ -422,11 +430,7 @@ TEST_CASE("CGAL's triangulation files (operator<<) read and certified, 2D, 3D, d
     const auto report = certify_cgal_file<3>(dt, "cgal_file_3.cgal");
     CHECK((report.delaunay && report.canonical));
     CHECK(report.simplices == dt.number_of_finite_cells());
-    bool flipped = false;
-    for (auto c = dt.finite_cells_begin(); c != dt.finite_cells_end() && !flipped; ++c)
-      for (int i = 0; i < 4 && !flipped; ++i)
-        if (!dt.is_infinite(c->neighbor(i))) flipped = dt.flip(c, i);
-    REQUIRE(flipped);
+    REQUIRE(flip_a_finite_facet(dt));
     const auto rejected = certify_cgal_file<3>(dt, "cgal_file_3_flipped.cgal");
     CHECK_FALSE(rejected.delaunay);
   }

@@ -798,26 +798,30 @@ class Certifier {
       }
       for_each_parallel(last - first, [&](std::size_t i) {
         const std::size_t r = first + i;
-        // The points of a bucket are its vertex's neighbours: asked for one
-        // bucket ahead, their cache misses overlap.
-        window.for_groups(
-            range_first(r), range_first(r + 1),
-            [&](std::size_t v, std::span<const Record> g) {
-              check_facet_group<Row>(static_cast<std::uint32_t>(v), g, results[r]);
-            },
-            [&](std::size_t v, std::span<const Record> next) {
-              prefetch(static_cast<std::uint32_t>(v));
-              for (const Record& rec : next) {
-                prefetch(rec.apex);
-                for (std::uint32_t u : rec.rest) prefetch(u);
-              }
-            },
-            // Renumbered, the order of the facets does not matter: what is found
-            // is sorted afterwards, and a walk in the input's numbers names the first.
-            !renumbered());
+        check_window_groups<Row>(window, range_first(r), range_first(r + 1), results[r]);
       });
       merge(std::span<Facet_results>(results).subspan(first, last - first));
     }
+  }
+
+  /// The facet groups of a window's vertices [lo, hi), checked into `out`.
+  /// The points of a bucket are its vertex's neighbours: asked for one bucket
+  /// ahead, their cache misses overlap. Renumbered, the order of the facets
+  /// does not matter: what is found is sorted afterwards, and a walk in the
+  /// input's numbers names the first.
+  template <class Row>
+  void check_window_groups(Facet_window<D, Row>& window, std::size_t lo, std::size_t hi, Facet_results& out) const {
+    using Record = Facet_record<D, Row>;
+    window.for_groups(
+        lo, hi, [&](std::size_t v, std::span<const Record> g) { check_facet_group<Row>(static_cast<std::uint32_t>(v), g, out); },
+        [&](std::size_t v, std::span<const Record> next) {
+          prefetch(static_cast<std::uint32_t>(v));
+          for (const Record& rec : next) {
+            prefetch(rec.apex);
+            for (std::uint32_t u : rec.rest) prefetch(u);
+          }
+        },
+        !renumbered());
   }
 
   /// The two smallest vertices of a valid encoded row (encode_row).
@@ -917,19 +921,7 @@ class Certifier {
           if (end - e > 16) __builtin_prefetch(&rows_[static_cast<std::size_t>(e[16])]);
           window.file(rows_[static_cast<std::size_t>(*e)], static_cast<std::size_t>(*e), lo, hi);
         }
-        window.for_groups(
-            lo, hi,
-            [&](std::size_t v, std::span<const Record> g) { check_facet_group<Row>(static_cast<std::uint32_t>(v), g, results[R]); },
-            [&](std::size_t v, std::span<const Record> next) {
-              prefetch(static_cast<std::uint32_t>(v));
-              for (const Record& rec : next) {
-                prefetch(rec.apex);
-                for (std::uint32_t u : rec.rest) prefetch(u);
-              }
-            },
-            // Renumbered, the order of the facets does not matter: what is found
-            // is sorted afterwards, and a walk in the input's numbers names the first.
-            !renumbered());
+        check_window_groups<Row>(window, lo, hi, results[R]);
       });
       merge(std::span<Facet_results>(results).subspan(first, last - first));
     }
