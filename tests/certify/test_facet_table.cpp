@@ -10,12 +10,16 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numeric>
 #include <random>
+#include <span>
 #include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
 #include "dewall/certify/certify.hpp"
+#include "dewall/certify/face_grouping.hpp"
 #include "dewall/certify/facet_table.hpp"
 #include "dewall/certify/spatial_order.hpp"
 #include "dewall/dewall.hpp"
@@ -273,4 +277,79 @@ TEST_CASE("certify spatial order: a permutation, for points at the ends of the d
     std::sort(sorted.begin(), sorted.end());
     for (std::size_t i = 0; i < sorted.size(); ++i) CHECK(sorted[i] == i);
   }
+}
+
+TEST_CASE("certify face grouping: the same groups as a brute force, among few vertices or many", "[certify][facet_table]") {
+  // Rows over a small pool of vertices spread over [0, vertex_count): with
+  // many more vertices than faces the buckets are the faces' own smallest
+  // vertices (the boundary of a large triangulation), else one per vertex.
+  std::mt19937_64 rng(62);
+  for (std::size_t spread : {std::size_t{1}, std::size_t{7919}}) {
+    constexpr std::size_t K = 3, pool = 40;
+    const std::size_t vertex_count = pool * spread;
+    std::vector<std::array<std::uint32_t, K>> rows(60);
+    for (auto& r : rows) {
+      std::vector<std::uint32_t> v(pool);
+      for (std::size_t i = 0; i < pool; ++i) v[i] = static_cast<std::uint32_t>(i * spread);
+      std::shuffle(v.begin(), v.end(), rng);
+      std::copy_n(v.begin(), K, r.begin());
+    }
+    std::map<std::vector<std::uint32_t>, std::vector<std::pair<std::size_t, int>>> expected, found;
+    for (std::size_t r = 0; r < rows.size(); ++r)
+      for (int p = 0; p < static_cast<int>(K); ++p) {
+        std::vector<std::uint32_t> face;
+        for (int j = 0; j < static_cast<int>(K); ++j)
+          if (j != p) face.push_back(rows[r][static_cast<std::size_t>(j)]);
+        std::sort(face.begin(), face.end());
+        expected[face].emplace_back(r, p);
+      }
+    std::size_t groups = 0;
+    const auto collect = [&](std::span<const certify::detail::Face_ref> g) {
+      ++groups;
+      std::vector<std::uint32_t> face;
+      for (int j = 0; j < static_cast<int>(K); ++j)
+        if (j != g[0].position) face.push_back(rows[g[0].row][static_cast<std::size_t>(j)]);
+      std::sort(face.begin(), face.end());
+      for (const auto& f : g) found[face].emplace_back(f.row, f.position);
+    };
+    INFO("vertex count " << vertex_count);
+    certify::detail::group_faces<K>(vertex_count, std::span<const std::array<std::uint32_t, K>>(rows), collect);
+    CHECK(found == expected);
+    CHECK(groups == expected.size());
+    // In blocks of vertices, as the progress overload walks them.
+    found.clear();
+    groups = 0;
+    certify::detail::group_faces<K>(vertex_count, std::span<const std::array<std::uint32_t, K>>(rows), collect, [](double) {});
+    CHECK(found == expected);
+    CHECK(groups == expected.size());
+  }
+}
+
+TEST_CASE("certify spatial order: the same order on one thread or several", "[certify][spatial_order]") {
+  // Enough points for the ranges to be keyed and counted apart, half of them
+  // on a coarse lattice so that many share a cell (their input order must stay),
+  // and a few that are not finite.
+  std::mt19937_64 rng(63);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<std::array<double, 3>> p(200000);
+  for (std::size_t i = 0; i < p.size(); ++i)
+    for (double& c : p[i]) c = i % 2 ? u(rng) : std::floor(4 * u(rng));
+  p[7][1] = NAN;
+  p[150001][2] = INFINITY;
+  const auto coords = [](const std::array<double, 3>& x) -> const std::array<double, 3>& { return x; };
+  const auto finite = [&](std::size_t i) { return std::isfinite(p[i][0]) && std::isfinite(p[i][1]) && std::isfinite(p[i][2]); };
+  const auto serial = certify::detail::z_order<3>(std::span<const std::array<double, 3>>(p), coords, finite);
+  for (std::size_t parts : {2u, 3u}) {
+    const auto threads = [](std::size_t count, auto&& f) {
+      std::vector<std::thread> pool;
+      for (std::size_t i = 0; i < count; ++i) pool.emplace_back([&f, i] { f(i, static_cast<unsigned>(i)); });
+      for (auto& t : pool) t.join();
+    };
+    INFO("parts " << parts);
+    CHECK(certify::detail::z_order<3>(std::span<const std::array<double, 3>>(p), coords, finite, threads, parts) == serial);
+  }
+  std::vector<std::uint32_t> sorted = serial, every(p.size());
+  std::sort(sorted.begin(), sorted.end());
+  std::iota(every.begin(), every.end(), 0u);
+  CHECK(sorted == every);
 }

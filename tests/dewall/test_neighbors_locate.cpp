@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <random>
 #include <span>
+#include <thread>
 #include <vector>
 
 #include "dewall/certify/neighbors.hpp"
@@ -123,12 +124,20 @@ TEST_CASE("first_occurrences: each point maps to the earliest equal point, -0 ==
   CHECK(first == std::vector<std::uint32_t>{0, 1, 0, 1, 4, 0});
 }
 
-TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates, in one pass or many", "[python]") {
+TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates, in one pass or many, on two threads", "[python]") {
   // Coordinates from a small set (0, ±0, 1, 2^-1074, a NaN-free mix), so most
   // points repeat an earlier one and the hash table's probe chains are long.
   const double values[] = {0.0, -0.0, 1.0, 0x1p-1074, -1.0, 3.5};
   std::mt19937_64 rng(5);
-  for (std::size_t n : {1u, 2u, 50u, 3000u}) {
+  // Two threads, each taking every other part: the passes run at once.
+  const auto two_threads = [](std::size_t count, auto&& f) {
+    std::thread other([&] {
+      for (std::size_t i = 1; i < count; i += 2) f(i, 1u);
+    });
+    for (std::size_t i = 0; i < count; i += 2) f(i, 0u);
+    other.join();
+  };
+  for (std::size_t n : {1u, 2u, 50u, 3000u, 9000u}) {
     std::vector<Point_d<3>> p(n);
     for (auto& q : p)
       for (double& c : q.x) c = values[rng() % 6];
@@ -146,6 +155,10 @@ TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates, in
                                                    k.approximate_coordinates_object(), [](std::size_t) { return false; },
                                                    max_table_bytes);
       CHECK(first == expected);
+      INFO("on two threads");
+      CHECK(kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
+                                      k.approximate_coordinates_object(), [](std::size_t) { return false; },
+                                      max_table_bytes, two_threads, 2) == expected);
     }
     // Excluded points map to themselves and stand for no later point.
     const auto excluded = [](std::size_t i) { return i % 3 == 0; };
@@ -161,6 +174,9 @@ TEST_CASE("first_occurrences agrees with a quadratic scan on many duplicates, in
       INFO("n = " << n << ", every third point excluded, table at most " << max_table_bytes << " bytes");
       CHECK(kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
                                       k.approximate_coordinates_object(), excluded, max_table_bytes) == expected_excluding);
+      CHECK(kernel::first_occurrences(std::span<const Point_d<3>>(p), k.compare_lexicographically_d_object(),
+                                      k.approximate_coordinates_object(), excluded, max_table_bytes, two_threads,
+                                      2) == expected_excluding);
     }
   }
 }

@@ -191,7 +191,7 @@ class Certifier {
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
     read_rows(source);
     if (!stop()) check_vertices();
-    std::vector<std::uint32_t>().swap(first_);
+    std::vector<bool>().swap(duplicate_);
     // A share keeps the map: a walk in the input's numbers picks its facets by it.
     if (!sharing_) std::vector<std::uint32_t>().swap(to_work_);
     if (!stop() && first_row_ != npos) check_facets();
@@ -416,24 +416,32 @@ class Certifier {
       }
     }
     // Streaming, the duplicates' table stays within the working memory too.
-    first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(),
-                                       k_.approximate_coordinates_object(), [&](std::size_t i) { return bool(bad_point_[i]); },
-                                       options_.stream ? stream_budget() : 0);
-    for (std::size_t i = 0; i < n; ++i)
-      if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
+    const std::vector<std::uint32_t> first = kernel::first_occurrences(
+        points_, k_.compare_lexicographically_d_object(), k_.approximate_coordinates_object(),
+        [&](std::size_t i) { return bool(bad_point_[i]); }, options_.stream ? stream_budget() : 0, loop(), threads_for(n));
+    // Only whether a point repeats an earlier one is asked later: a bit each.
+    duplicate_.assign(n, false);
+    for (std::size_t i = 0; i < n; ++i) {
+      duplicate_[i] = first[i] != i;
+      if (!bad_point_[i] && first[i] == i) ++report_.distinct_points;
+    }
   }
 
   /// The certifier's numbering: along a Z-order curve, the points copied in it.
   void renumber() {
     const std::size_t n = points_.size();
     if (n < 2) return;
-    to_input_ = z_order<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; });
+    to_input_ = z_order<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; },
+                           loop(), 4 * threads_for(n));
     to_work_.resize(n);
     work_points_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      to_work_[to_input_[i]] = static_cast<std::uint32_t>(i);
-      work_points_[i] = points_[to_input_[i]];
-    }
+    const std::size_t parts = std::clamp<std::size_t>(n / 65536, 1, 4 * threads_for(n));
+    for_each_parallel(parts, [&](std::size_t k) {
+      for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i) {
+        to_work_[to_input_[i]] = static_cast<std::uint32_t>(i);
+        work_points_[i] = points_[to_input_[i]];
+      }
+    });
     work_ = work_points_;
   }
 
@@ -451,7 +459,7 @@ class Certifier {
       used_.assign(n, 0);
       usable_.assign(n, 0);
       for (std::size_t i = 0; i < n; ++i)
-        if (!bad_point_[i] && first_[i] == i) usable_[work_number(static_cast<std::uint32_t>(i))] = 1;
+        if (!bad_point_[i] && !duplicate_[i]) usable_[work_number(static_cast<std::uint32_t>(i))] = 1;
       if (options_.stream) {
         facet_count_.assign(n, 0);
         // Ranges of vertices whose files hold about a quarter of a window each,
@@ -640,7 +648,7 @@ class Certifier {
     }
     for (std::uint32_t v : c) {
       if (bad_point_[v]) ok = false;  // reported with the point
-      else if (first_[v] != v) {
+      else if (duplicate_[v]) {
         fatal.push_back({.rule = Rule::duplicate_point_used, .simplex = r, .point = v});
         ok = false;
       }
@@ -657,7 +665,7 @@ class Certifier {
 
   void check_vertices() {
     for (std::size_t i = 0; i < points_.size() && !stop(); ++i)
-      if (!bad_point_[i] && first_[i] == i && owns_vertex(work_number(static_cast<std::uint32_t>(i))) &&
+      if (!bad_point_[i] && !duplicate_[i] && owns_vertex(work_number(static_cast<std::uint32_t>(i))) &&
           !used_[work_number(static_cast<std::uint32_t>(i))])
         fail({.rule = Rule::point_not_a_vertex, .point = i});
   }
@@ -1081,6 +1089,12 @@ class Certifier {
     return std::max(1u, std::thread::hardware_concurrency());
   }
 
+  /// for_each_parallel as a loop object (kernel/serial_loop.hpp), for the
+  /// functions that take one.
+  auto loop() const {
+    return [this](std::size_t count, auto&& f) { for_each_parallel(count, f); };
+  }
+
   /// The threads for_each_parallel(count, …) runs on.
   unsigned threads_for(std::size_t count) const {
     const unsigned threads = options_.threads ? options_.threads : available_cores();
@@ -1176,7 +1190,7 @@ class Certifier {
   std::vector<Violation> fatal_, facet_fatal_, delaunay_, notes_;
   std::vector<bool> bad_point_;
   kernel::Static_filter_d<D> static_filter_;  // over the finite points' box (never decides until made)
-  std::vector<std::uint32_t> first_;
+  std::vector<bool> duplicate_;  // a later occurrence of an earlier point
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
   std::vector<Point> work_points_;
   std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)

@@ -28,25 +28,35 @@ struct Face_ref {
 /// The (K−1)-faces of k-vertex rows filed by smallest vertex (a counting sort);
 /// `for_buckets` then groups the faces of a range of buckets. Ranges are
 /// independent: disjoint ranges may be grouped at once, on different threads.
+/// Few rows among many vertices (the boundary of a large triangulation) are
+/// filed under their own smallest vertices only, so that the memory follows the
+/// rows, not the vertex count.
 /// \pre every index < vertex_count; the K indices of a row are distinct.
 template <std::size_t K>
 class Face_buckets {
  public:
-  Face_buckets(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows)
-      : rows_(rows), start_(vertex_count + 1, 0) {
+  Face_buckets(std::size_t vertex_count, std::span<const std::array<std::uint32_t, K>> rows) : rows_(rows), n_(vertex_count) {
     static_assert(K >= 2);
+    if (rows.size() * K < vertex_count / 8) {
+      for (std::size_t r = 0; r < rows.size(); ++r)
+        for (int p = 0; p < static_cast<int>(K); ++p) vertices_.push_back(smallest(r, p));
+      std::sort(vertices_.begin(), vertices_.end());
+      vertices_.erase(std::unique(vertices_.begin(), vertices_.end()), vertices_.end());
+    }
+    const std::size_t buckets = vertices_.empty() ? vertex_count : vertices_.size();
+    start_.assign(buckets + 1, 0);
     for (std::size_t r = 0; r < rows.size(); ++r)
-      for (int p = 0; p < static_cast<int>(K); ++p) ++start_[smallest(r, p) + 1];
-    for (std::size_t v = 0; v < vertex_count; ++v) start_[v + 1] += start_[v];
+      for (int p = 0; p < static_cast<int>(K); ++p) ++start_[bucket_of(smallest(r, p)) + 1];
+    for (std::size_t b = 0; b < buckets; ++b) start_[b + 1] += start_[b];
     // Packed as row·K + position: one 64-bit word per face.
-    refs_.resize(start_[vertex_count]);
+    refs_.resize(start_[buckets]);
     std::vector<std::size_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t r = 0; r < rows.size(); ++r)
       for (int p = 0; p < static_cast<int>(K); ++p)
-        refs_[next[smallest(r, p)]++] = static_cast<std::uint64_t>(r) * K + static_cast<std::uint64_t>(p);
+        refs_[next[bucket_of(smallest(r, p))]++] = static_cast<std::uint64_t>(r) * K + static_cast<std::uint64_t>(p);
   }
 
-  std::size_t vertex_count() const { return start_.size() - 1; }
+  std::size_t vertex_count() const { return n_; }
 
   /// Calls `group(std::span<const Face_ref>)` once for every distinct face
   /// whose smallest vertex is in [first, last), with every row/position that
@@ -55,9 +65,9 @@ class Face_buckets {
   void for_buckets(std::size_t first, std::size_t last, Group&& group) const {
     std::vector<std::pair<Key, std::uint64_t>> bucket;
     std::vector<Face_ref> members;
-    for (std::size_t v = first; v < last; ++v) {
+    for (std::size_t b = first_bucket(first), end = first_bucket(last); b < end; ++b) {
       bucket.clear();
-      for (std::size_t i = start_[v]; i < start_[v + 1]; ++i)
+      for (std::size_t i = start_[b]; i < start_[b + 1]; ++i)
         bucket.emplace_back(key_of(static_cast<std::size_t>(refs_[i] / K), static_cast<int>(refs_[i] % K)), refs_[i]);
       std::sort(bucket.begin(), bucket.end());
       for (std::size_t i = 0; i < bucket.size();) {
@@ -87,7 +97,19 @@ class Face_buckets {
     return m;
   }
 
+  /// The bucket of smallest vertex v (v one of them when filed sparsely).
+  std::size_t bucket_of(std::uint32_t v) const {
+    return vertices_.empty() ? v : static_cast<std::size_t>(std::lower_bound(vertices_.begin(), vertices_.end(), v) - vertices_.begin());
+  }
+  /// The first bucket of a smallest vertex ≥ v.
+  std::size_t first_bucket(std::size_t v) const {
+    if (vertices_.empty()) return std::min(v, n_);
+    return static_cast<std::size_t>(std::lower_bound(vertices_.begin(), vertices_.end(), v) - vertices_.begin());
+  }
+
   std::span<const std::array<std::uint32_t, K>> rows_;
+  std::size_t n_;
+  std::vector<std::uint32_t> vertices_;  // sparse: the smallest vertices, increasing (empty: every vertex a bucket)
   std::vector<std::size_t> start_;
   std::vector<std::uint64_t> refs_;
 };

@@ -10,9 +10,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "dewall/kernel/sign.hpp"
+#include "dewall/kernel/serial_loop.hpp"
 
 namespace dewall::kernel {
 
@@ -50,29 +52,46 @@ constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
 /// doubles; a lazy exact kernel's approximations need not be); they only place
 /// points in a hash table, `compare` decides. A point for which `excluded(i)` is true
 /// (a non-finite one, say) is compared with nothing and maps to itself.
-/// `max_table_bytes` (0: no limit) bounds the hash table: above it the points
+/// `max_table_bytes` (0: no limit) bounds the hash tables: above it the points
 /// are taken in passes, each the points whose hash starts with the pass's bits
 /// (equal points have equal hashes, so they meet in one pass), at the cost of
 /// hashing every point once more per pass. At most 2^16 passes: a bound below
 /// 16 bytes per 2^16 points is exceeded.
+/// `loop(count, f)` calls f(i, worker) for i in [0, count), on up to `workers`
+/// threads (worker < workers): the passes are independent, so with more than one
+/// worker there are at least as many passes, each with its worker's table (the
+/// bound then holds for all tables at once). The answer is the same for any loop.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
 /// Complexity: O(n) expected comparisons, one table of 2n–4n 8-byte slots (a sort
 /// of indices cost far more: docs/engines.md), or of max_table_bytes and
 /// O(n · 16n / max_table_bytes) hashes.
-template <class Point, class Compare, class Coordinates, class Excluded>
+template <class Point, class Compare, class Coordinates, class Excluded, class Loop = Serial_loop>
 std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Compare compare, Coordinates coordinates,
-                                             Excluded excluded, std::size_t max_table_bytes = 0) {
+                                             Excluded excluded, std::size_t max_table_bytes = 0, Loop loop = {},
+                                             unsigned workers = 1) {
   const std::size_t n = points.size();
+  // Threads only for enough points to pay for them; then every part of the
+  // work goes through `loop`, else through a serial one.
+  const std::size_t concurrent = n >= 8192 ? std::max(1u, workers) : 1;
+  const auto run = [&](std::size_t count, auto&& f) {
+    if (concurrent > 1) loop(count, f);
+    else Serial_loop{}(count, f);
+  };
   std::vector<std::uint32_t> first(n);
-  for (std::size_t i = 0; i < n; ++i) first[i] = static_cast<std::uint32_t>(i);
+  const std::size_t parts = concurrent;
+  const auto part = [&](std::size_t k) { return std::pair{n * k / parts, n * (k + 1) / parts}; };
+  run(parts, [&](std::size_t k, unsigned) {
+    for (auto [i, end] = part(k); i < end; ++i) first[i] = static_cast<std::uint32_t>(i);
+  });
   const auto hash_of = [&](std::size_t i) { return coordinate_hash(coordinates(points[i])); };
   // Passes: a power of two, the pass of a hash its top bits. The table of a
   // pass is sized for the points the pass really has (counted first), so
   // that a skewed split cannot fill it.
   constexpr std::size_t slot_bytes = sizeof(std::uint64_t);
   int pass_bits = 0;
+  while ((std::size_t{1} << pass_bits) < concurrent) ++pass_bits;
   while (max_table_bytes != 0 && pass_bits < 16 &&
-         std::bit_ceil(2 * (n >> pass_bits) + 2) * slot_bytes > max_table_bytes)
+         concurrent * std::bit_ceil(2 * (n >> pass_bits) + 2) * slot_bytes > max_table_bytes)
     ++pass_bits;
   const std::size_t passes = std::size_t{1} << pass_bits;
   const auto pass_of = [&](std::uint64_t hash) {
@@ -82,8 +101,13 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
   if (passes == 1) {
     in_pass[0] = n;
   } else {
-    for (std::size_t i = 0; i < n; ++i)
-      if (!excluded(i)) ++in_pass[pass_of(hash_of(i))];
+    std::vector<std::vector<std::size_t>> counted(parts, std::vector<std::size_t>(passes, 0));
+    run(parts, [&](std::size_t k, unsigned) {
+      for (auto [i, end] = part(k); i < end; ++i)
+        if (!excluded(i)) ++counted[k][pass_of(hash_of(i))];
+    });
+    for (const auto& c : counted)
+      for (std::size_t p = 0; p < passes; ++p) in_pass[p] += c[p];
   }
   // Open addressing with linear probing. A slot holds, in its low 32 bits, 1 +
   // the index of the first occurrence of its point (0: empty), and in its
@@ -93,14 +117,16 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
   // equal point a probe meets is the earliest.
   const std::size_t slots = std::bit_ceil(2 * *std::max_element(in_pass.begin(), in_pass.end()) + 2), mask = slots - 1;
   constexpr std::uint64_t index_bits = 0xffffffffu, tag_bits = ~index_bits;
-  std::vector<std::uint64_t> table(slots);
-  // The slots are random, each a cache miss: they are hashed and asked for
-  // `ahead` points in advance (measured: the probes were most of the time).
-  constexpr std::size_t ahead = 16;
-  std::array<std::uint64_t, ahead> upcoming{};
-  for (std::size_t pass = 0; pass < passes; ++pass) {
-    if (in_pass[pass] == 0) continue;
-    std::fill(table.begin(), table.end(), 0);
+  std::vector<std::vector<std::uint64_t>> tables(concurrent);
+  run(passes, [&](std::size_t pass, unsigned worker) {
+    if (in_pass[pass] == 0) return;
+    std::vector<std::uint64_t>& table = tables[worker];
+    if (table.empty()) table.resize(slots);
+    else std::fill(table.begin(), table.end(), 0);
+    // The slots are random, each a cache miss: they are hashed and asked for
+    // `ahead` points in advance (measured: the probes were most of the time).
+    constexpr std::size_t ahead = 16;
+    std::array<std::uint64_t, ahead> upcoming{};
     for (std::size_t i = 0; i < std::min(n, ahead); ++i) {
       upcoming[i] = hash_of(i);
       __builtin_prefetch(&table[upcoming[i] & mask]);
@@ -126,7 +152,7 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
         }
       }
     }
-  }
+  });
   return first;
 }
 
