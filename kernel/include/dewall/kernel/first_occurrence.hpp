@@ -58,9 +58,9 @@ constexpr std::uint64_t coordinate_hash(const Coordinates& coordinates) {
 /// hashing every point once more per pass. At most 2^16 passes: a bound below
 /// 16 bytes per 2^16 points is exceeded.
 /// `loop(count, f)` calls f(i, worker) for i in [0, count), on up to `workers`
-/// threads (worker < workers): the passes are independent, so with more than one
-/// worker there are at least as many passes, each with its worker's table (the
-/// bound then holds for all tables at once). The answer is the same for any loop.
+/// threads (worker < workers): without a bound, the points are taken in as
+/// many passes as workers, at once, each with its worker's table (together the
+/// size of one). The answer is the same for any loop.
 /// \pre points.size() < 2^32 (indices are 32-bit, as everywhere in the project).
 /// Complexity: O(n) expected comparisons, one table of 2n–4n 8-byte slots (a sort
 /// of indices cost far more: docs/engines.md), or of max_table_bytes and
@@ -70,9 +70,11 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
                                              Excluded excluded, std::size_t max_table_bytes = 0, Loop loop = {},
                                              unsigned workers = 1) {
   const std::size_t n = points.size();
-  // Threads only for enough points to pay for them; then every part of the
-  // work goes through `loop`, else through a serial one.
-  const std::size_t concurrent = n >= 8192 ? std::max(1u, workers) : 1;
+  // Threads only for enough points to pay for them and without a bound on the
+  // tables (under one, the passes are many and each reads every point: they
+  // are bound by the memory's bandwidth, not by a core); then every part of
+  // the work goes through `loop`, else through a serial one.
+  const std::size_t concurrent = n >= 8192 && max_table_bytes == 0 ? std::max(1u, workers) : 1;
   const auto run = [&](std::size_t count, auto&& f) {
     if (concurrent > 1) loop(count, f);
     else Serial_loop{}(count, f);
@@ -90,8 +92,7 @@ std::vector<std::uint32_t> first_occurrences(std::span<const Point> points, Comp
   constexpr std::size_t slot_bytes = sizeof(std::uint64_t);
   int pass_bits = 0;
   while ((std::size_t{1} << pass_bits) < concurrent) ++pass_bits;
-  while (max_table_bytes != 0 && pass_bits < 16 &&
-         concurrent * std::bit_ceil(2 * (n >> pass_bits) + 2) * slot_bytes > max_table_bytes)
+  while (max_table_bytes != 0 && pass_bits < 16 && std::bit_ceil(2 * (n >> pass_bits) + 2) * slot_bytes > max_table_bytes)
     ++pass_bits;
   const std::size_t passes = std::size_t{1} << pass_bits;
   const auto pass_of = [&](std::uint64_t hash) {
