@@ -361,7 +361,10 @@ class Certifier {
   };
   using Bucket_entry = typename Row_buckets<D + 1>::Entry;
 
-  static constexpr std::size_t block_rows = std::size_t{1} << 16;
+  /// Rows read, then checked on all cores, at a time: enough for each
+  /// parallel section to last tens of milliseconds, so that a thread woken on
+  /// a core busy with other work still gets its share.
+  static constexpr std::size_t block_rows = std::size_t{1} << 20;
 
   bool stop() const { return !options_.all && !fatal_.empty(); }
   void fail(Violation v) {
@@ -454,7 +457,8 @@ class Certifier {
   /// contain the witness point (the covering test, reported in its turn).
   void read_rows(Simplex_source<D>& source) {
     const std::size_t n = points_.size();
-    std::vector<Cell> block(block_rows), encoded;
+    const std::size_t rows_left = source.remaining();
+    std::vector<Cell> block(rows_left == npos ? block_rows : std::clamp<std::size_t>(rows_left, 1, block_rows)), encoded;
     if (!stop()) {
       used_.assign(n, 0);
       usable_.assign(n, 0);
@@ -469,9 +473,9 @@ class Certifier {
         const auto files = static_cast<std::size_t>(
             std::clamp(records / double(stream_budget()), 1.0, std::clamp(double(n) / 64, 1.0, 512.0)));
         buckets_.emplace(n, files, options_.temp_directory, std::max<std::size_t>(64, (1 << 16) / sizeof(Bucket_entry)));
-        encoded.resize(block_rows);
+        encoded.resize(block.size());
       } else if (compact()) {
-        encoded.resize(block_rows);  // the share's rows are then kept, with their numbers
+        encoded.resize(block.size());  // the share's rows are then kept, with their numbers
         // Its part of the rows, and a little for those that cross into other parts.
         if (const std::size_t m = source.remaining(); m != npos) {
           const std::size_t expected = std::min(m, m / share_.parts + m / 16);
