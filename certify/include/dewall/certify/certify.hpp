@@ -190,6 +190,7 @@ class Certifier {
     check_points();
     make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
+    std::vector<std::uint64_t>().swap(z_sorted_);
     read_rows(source);
     if (!stop()) check_vertices();
     std::vector<std::uint32_t>().swap(first_);
@@ -416,10 +417,17 @@ class Certifier {
         if (bad_point_[i] && owns_bad_point(i)) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }
-    // Streaming, the duplicates' table stays within the working memory too.
-    first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(),
-                                       k_.approximate_coordinates_object(), [&](std::size_t i) { return bool(bad_point_[i]); },
-                                       options_.stream ? stream_budget() : 0);
+    const auto excluded = [&](std::size_t i) { return bool(bad_point_[i]); };
+    if (options_.spatial_order && !options_.stream && n >= 2) {
+      // The Z order (renumber's) puts equal points in one cell: they are
+      // compared there, without a table of all points.
+      z_sorted_ = z_order_keys<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; });
+      first_ = first_occurrences_in_z_order(points_, std::span<const std::uint64_t>(z_sorted_), k_.compare_lexicographically_d_object(), excluded);
+    } else {
+      // Streaming, the duplicates' table stays within the working memory too.
+      first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(), k_.approximate_coordinates_object(),
+                                         excluded, options_.stream ? stream_budget() : 0);
+    }
     for (std::size_t i = 0; i < n; ++i)
       if (!bad_point_[i] && first_[i] == i) ++report_.distinct_points;
   }
@@ -428,7 +436,9 @@ class Certifier {
   void renumber() {
     const std::size_t n = points_.size();
     if (n < 2) return;
-    to_input_ = z_order<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; });
+    to_input_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) to_input_[i] = static_cast<std::uint32_t>(z_sorted_[i]);
+    std::vector<std::uint64_t>().swap(z_sorted_);
     to_work_.resize(n);
     work_points_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -1198,6 +1208,7 @@ class Certifier {
   std::vector<bool> bad_point_;
   kernel::Static_filter_d<D> static_filter_;  // over the finite points' box (never decides until made)
   std::vector<std::uint32_t> first_;
+  std::vector<std::uint64_t> z_sorted_;  // check_points' Z order for renumber (z_order_keys)
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
   std::vector<Point> work_points_;
   std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)

@@ -13,14 +13,33 @@
 #include <span>
 #include <vector>
 
+#include "dewall/kernel/sign.hpp"
+
 namespace dewall::certify::detail {
 
-/// The points' indices in Z order of a grid of 2^(32/D) cells per axis over the
+/// Bit b of a byte at bit b·D.
+template <int D>
+inline constexpr std::array<std::uint64_t, 256> spread_byte = [] {
+  std::array<std::uint64_t, 256> t{};
+  for (std::size_t i = 0; i < 256; ++i)
+    for (int b = 0; b < 8; ++b)
+      if ((i >> b) & 1) t[i] |= std::uint64_t{1} << (b * D);
+  return t;
+}();
+
+/// Spreads the low 16 bits of x: bit b to bit b·D.
+template <int D>
+constexpr std::uint64_t spread_bits(std::uint32_t x) {
+  return spread_byte<D>[x & 255] | (spread_byte<D>[(x >> 8) & 255] << (8 * D));
+}
+
+/// The points in Z order of a grid of 2^(32/D) cells per axis over the
 /// bounding box of the points for which `finite(i)` holds (the others go
-/// first); equal cells keep the input order. `coordinates(p)` gives D doubles.
-/// Complexity: O(n), two passes of a 16-bit radix sort.
+/// first): each as its cell's key in the high 32 bits and its index in the
+/// low ones, sorted (equal cells keep the input order). `coordinates(p)`
+/// gives D doubles. Complexity: O(n), two passes of a 16-bit radix sort.
 template <int D, class Point, class Coordinates, class Finite>
-std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates coordinates, Finite finite) {
+std::vector<std::uint64_t> z_order_keys(std::span<const Point> points, Coordinates coordinates, Finite finite) {
   const std::size_t n = points.size();
   std::array<double, D> lo, hi;
   lo.fill(INFINITY);
@@ -39,21 +58,18 @@ std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates co
   // in [0, 1] (rounding is monotone) and never NaN, for any finite points.
   std::array<double, D> extent;
   for (int j = 0; j < D; ++j) extent[j] = hi[j] * 0.5 - lo[j] * 0.5;
-  // Key in the high 32 bits, index in the low ones.
   std::vector<std::uint64_t> a(n), b(n);
   for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t key = 0;
+    std::uint64_t key = 0;
     if (finite(i)) {
       const auto& x = coordinates(points[i]);
-      std::array<std::uint32_t, D> q;
+      // The bits of the cell's coordinates interleaved, the first axis's highest.
       for (int j = 0; j < D; ++j) {
         const double t = extent[j] > 0 ? (double(x[j]) * 0.5 - lo[j] * 0.5) / extent[j] : 0.0;
-        q[j] = static_cast<std::uint32_t>(std::min(t * cells, cells - 1));
+        key |= spread_bits<D>(static_cast<std::uint32_t>(std::min(t * cells, cells - 1))) << (D - 1 - j);
       }
-      for (int bit = bits - 1; bit >= 0; --bit)
-        for (int j = 0; j < D; ++j) key = (key << 1) | ((q[j] >> bit) & 1u);
     }
-    a[i] = (std::uint64_t{key} << 32) | i;
+    a[i] = (key << 32) | i;
   }
   for (int shift : {32, 48}) {
     std::vector<std::size_t> start(65537, 0);
@@ -62,9 +78,57 @@ std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates co
     for (std::uint64_t x : a) b[start[(x >> shift) & 0xffff]++] = x;
     a.swap(b);
   }
-  std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(a[i]);
+  return a;
+}
+
+/// The points' indices in Z order (z_order_keys without the keys).
+template <int D, class Point, class Coordinates, class Finite>
+std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates coordinates, Finite finite) {
+  const std::vector<std::uint64_t> a = z_order_keys<D>(points, coordinates, finite);
+  std::vector<std::uint32_t> order(a.size());
+  for (std::size_t i = 0; i < a.size(); ++i) order[i] = static_cast<std::uint32_t>(a[i]);
   return order;
+}
+
+/// kernel::first_occurrences from the points' Z order (z_order_keys, with
+/// `excluded(i)` for !finite(i)): for each point i, the smallest index with
+/// the same coordinates (i itself when none is earlier; an excluded point
+/// maps to itself). Equal points have equal coordinates, so one cell: only
+/// the points of a cell are compared, by `compare` (a kernel's exact
+/// lexicographic order), a few at a time, a crowded cell sorted.
+/// Complexity: O(n) expected for spread points; O(s log s) comparisons for a cell of s points.
+template <class Point, class Compare, class Excluded>
+std::vector<std::uint32_t> first_occurrences_in_z_order(std::span<const Point> points, std::span<const std::uint64_t> sorted,
+                                                        Compare compare, Excluded excluded) {
+  const std::size_t n = points.size();
+  std::vector<std::uint32_t> first(n);
+  for (std::size_t i = 0; i < n; ++i) first[i] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> cell;
+  for (std::size_t a = 0, b; a < sorted.size(); a = b) {
+    for (b = a + 1; b < sorted.size() && (sorted[b] >> 32) == (sorted[a] >> 32);) ++b;
+    if (b - a == 1) continue;
+    cell.clear();
+    for (std::size_t k = a; k < b; ++k)  // in increasing index
+      if (const auto i = static_cast<std::uint32_t>(sorted[k]); !excluded(i)) cell.push_back(i);
+    if (cell.size() <= 8) {
+      // Each point against the earlier first occurrences: the earliest equal
+      // point is one (nothing equal comes before it).
+      for (std::size_t x = 1; x < cell.size(); ++x)
+        for (std::size_t y = 0; y < x; ++y)
+          if (first[cell[y]] == cell[y] && compare(points[cell[y]], points[cell[x]]) == kernel::EQUAL) {
+            first[cell[x]] = cell[y];
+            break;
+          }
+    } else {
+      std::sort(cell.begin(), cell.end(), [&](std::uint32_t u, std::uint32_t v) {
+        const auto c = compare(points[u], points[v]);
+        return c != kernel::EQUAL ? c == kernel::SMALLER : u < v;
+      });
+      for (std::size_t x = 1; x < cell.size(); ++x)
+        if (compare(points[cell[x - 1]], points[cell[x]]) == kernel::EQUAL) first[cell[x]] = first[cell[x - 1]];
+    }
+  }
+  return first;
 }
 
 }  // namespace dewall::certify::detail
