@@ -47,6 +47,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -121,7 +122,8 @@ const char* const usage_text =
     "reads POINTS and SIMPLICES (any format dewall certify reads) and checks the facets,\n"
     "rows and points of its share of the vertices; rank 0 merges the shares' findings\n"
     "and prints the verdict.\n"
-    "  --stats   per-rank seconds on standard error (reading, its share, merging)\n"
+    "  --stats   per-rank figures on standard error: seconds (reading, its share,\n"
+    "            merging), CPU seconds (reading and its share) and peak memory\n"
     "  --per-rank  SIMPLICES is the OUT of `triangulate --per-rank`: the files\n"
     "            OUT.r0.ext, OUT.r1.ext, ... up to the first missing one, their rows\n"
     "            numbered one after another\n"
@@ -816,6 +818,13 @@ dewall::certify::Share_report<D> deserialize(std::span<const std::uint64_t> w) {
   return s;
 }
 
+/// The CPU seconds of this process (all of its threads) so far.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 /// This node's cores shared among its ranks (at least one each).
 unsigned threads_per_rank(MPI_Comm comm, int rank) {
   MPI_Comm node;
@@ -830,7 +839,7 @@ unsigned threads_per_rank(MPI_Comm comm, int rank) {
 
 template <int D>
 int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table& points, const Simplex_files& files, int rank,
-            int size, double read_seconds) {
+            int size, double read_seconds, double cpu0) {
   const double t0 = MPI_Wtime();
   namespace certify = dewall::certify;
   using K = dewall::kernel::Filtered_kernel_d<D>;
@@ -850,9 +859,11 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
   options.stream = stream != 0;
 
   std::vector<std::uint64_t> mine;
+  double cpu = 0;  // reading and the share, before any waiting for the other ranks
   step(comm, [&] {
     Files_source<D> source(files.readers);
     mine = serialize<D>(certify::certify_share<K>(p, source, {static_cast<std::size_t>(rank), static_cast<std::size_t>(size)}, options));
+    cpu = cpu_seconds() - cpu0;
   });
   const double t1 = MPI_Wtime();
   // Rank 0 gathers the shares, in chunks (no 2^31 limit on a share).
@@ -891,14 +902,18 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
   });
   MPI_Bcast(&status, 1, MPI_INT, 0, comm);
   if (args.stats) {
-    const std::array<double, 3> mine_seconds = {read_seconds, t1 - t0, MPI_Wtime() - t1};
-    std::vector<double> every(rank == 0 ? 3 * static_cast<std::size_t>(size) : 0);
-    MPI_Gather(mine_seconds.data(), 3, MPI_DOUBLE, every.data(), 3, MPI_DOUBLE, 0, comm);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    constexpr std::size_t k = 5;
+    const std::array<double, k> mine_figures = {read_seconds, t1 - t0, MPI_Wtime() - t1, cpu, static_cast<double>(usage.ru_maxrss) / 1024.0};
+    std::vector<double> every(rank == 0 ? k * static_cast<std::size_t>(size) : 0);
+    MPI_Gather(mine_figures.data(), k, MPI_DOUBLE, every.data(), k, MPI_DOUBLE, 0, comm);
     if (rank == 0) {
-      std::fprintf(stderr, "rank | seconds:   read  share  merge\n");
-      for (int q = 0; q < size; ++q)
-        std::fprintf(stderr, "%4d |          %6.3f %6.3f %6.3f\n", q, every[3 * static_cast<std::size_t>(q)],
-                     every[3 * static_cast<std::size_t>(q) + 1], every[3 * static_cast<std::size_t>(q) + 2]);
+      std::fprintf(stderr, "rank | seconds:   read  share  merge |    cpu | peak MB\n");
+      for (int q = 0; q < size; ++q) {
+        const double* e = &every[k * static_cast<std::size_t>(q)];
+        std::fprintf(stderr, "%4d |          %6.3f %6.3f %6.3f | %6.3f | %7.0f\n", q, e[0], e[1], e[2], e[3], e[4]);
+      }
     }
   }
   return status;
@@ -907,7 +922,7 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
 int certify_command(const Arguments& args, int rank, int size) {
   dewall::io::Point_table points;
   Simplex_files files;
-  const double t0 = MPI_Wtime();
+  const double t0 = MPI_Wtime(), cpu0 = cpu_seconds();
   step(MPI_COMM_WORLD, [&] {
     points = dewall::io::read_points_file(args.input);
     if (!args.per_rank) {
@@ -931,7 +946,7 @@ int certify_command(const Arguments& args, int rank, int size) {
                        " points has at least one)");
   });
   return dewall::kernel::with_dimension(points.dimension, [&](auto d) {
-    return certify<decltype(d)::value>(MPI_COMM_WORLD, args, points, files, rank, size, MPI_Wtime() - t0);
+    return certify<decltype(d)::value>(MPI_COMM_WORLD, args, points, files, rank, size, MPI_Wtime() - t0, cpu0);
   });
 }
 
