@@ -422,7 +422,7 @@ class Certifier {
       // The Z order (renumber's) puts equal points in one cell: they are
       // compared there, without a table of all points.
       z_sorted_ = z_order_keys<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; });
-            first_ = first_occurrences_in_z_order(points_, std::span<const std::uint64_t>(z_sorted_), k_.compare_lexicographically_d_object(), excluded);
+      first_ = first_occurrences_in_z_order(points_, std::span<const std::uint64_t>(z_sorted_), k_.compare_lexicographically_d_object(), excluded);
     } else {
       // Streaming, the duplicates' table stays within the working memory too.
       first_ = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(), k_.approximate_coordinates_object(),
