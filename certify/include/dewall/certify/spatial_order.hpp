@@ -2,7 +2,9 @@
 // so that the points of neighbouring simplices sit side by side in memory and
 // the facets filed under neighbouring vertices lie in neighbouring buckets.
 // Only the order of the work changes: every decision is an exact predicate on
-// the same points, and every report is given in the input's numbers.
+// the same points, and every report is given in the input's numbers. The same
+// order finds the duplicate points: equal points share a cell, and only the
+// points of a cell are compared (exactly).
 #pragma once
 
 #include <algorithm>
