@@ -1,6 +1,5 @@
 // dewall certify POINTS SIMPLICES [--canonical] [--all] [--json] [--threads N] [--stream] [--memory SIZE]
 #include <chrono>
-#include <cctype>
 #include <cstdio>
 #include <optional>
 #include <span>
@@ -9,7 +8,6 @@
 #include "certify_text.hpp"
 #include "cli.hpp"
 #include "dewall/certify/certify.hpp"
-#include "dewall/io/quote.hpp"
 #include "dewall/io/simplex_reader.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
 
@@ -18,17 +16,8 @@ namespace {
 
 /// "512M", "4G", "65536": bytes, with K, M or G for powers of 1024.
 std::size_t parse_memory(const std::string& text) {
-  std::string digits = text;
-  std::size_t unit = 1;
-  if (!digits.empty() && std::string("kKmMgG").find(digits.back()) != std::string::npos) {
-    const char u = static_cast<char>(std::toupper(static_cast<unsigned char>(digits.back())));
-    unit = u == 'K' ? std::size_t{1} << 10 : u == 'M' ? std::size_t{1} << 20 : std::size_t{1} << 30;
-    digits.pop_back();
-  }
-  const long n = parse_long(digits, "--memory value");
-  if (n < 1 || static_cast<unsigned long>(n) > (std::size_t{1} << 50) / unit)
-    throw Usage_error("--memory must be a positive size such as 512M or 4G, not " + text);
-  return static_cast<std::size_t>(n) * unit;
+  if (const auto bytes = memory_size(text)) return *bytes;
+  throw Usage_error("--memory must be a positive size such as 512M or 4G, not " + text);
 }
 
 int command_certify(int argc, char** argv) {
@@ -84,51 +73,11 @@ int command_certify(int argc, char** argv) {
 
   // Witnesses name input numbers as the files do (TetGen may count from 1).
   const Certify_names names{sname, points.first_index, [&](std::size_t r) { return list.where(sname, r); }, list.format};
-  const auto name = [&](std::size_t r) { return names(r); };
-  const auto shifted = [&](const certify::Violation& v) { return names.shifted(v); };
-  const std::size_t shift = points.first_index;
-  const bool ok = report.delaunay && (report.canonical || !canonical);
-  // A text file's line of row r, as a JSON member; binary files have none.
-  const auto line = [&](const char* key, std::size_t r) {
-    return list.lines.empty() ? std::string() : ",\"" + std::string(key) + "\":" + std::to_string(list.lines[r]);
-  };
-
   if (json) {
-    std::string out = "{\"delaunay\":" + std::string(report.delaunay ? "true" : "false") +
-                      ",\"canonical\":" + (report.canonical ? "true" : "false") +
-                      ",\"dimension\":" + std::to_string(report.dimension) +
-                      ",\"points\":" + std::to_string(report.points) +
-                      ",\"distinct_points\":" + std::to_string(report.distinct_points) +
-                      ",\"simplices\":" + std::to_string(report.simplices) +
-                      ",\"interior_facets\":" + std::to_string(report.interior_facets) +
-                      ",\"boundary_facets\":" + std::to_string(report.boundary_facets) +
-                      ",\"cospherical_facets\":" + std::to_string(report.cospherical_facets) +
-                      ",\"format\":" + io::json_string(list.format) + ",\"seconds\":" + std::to_string(seconds) +
-                      ",\"violations\":[";
-    for (std::size_t i = 0; i < report.violations.size(); ++i) {
-      const auto v = shifted(report.violations[i]);
-      out += i ? "," : "";
-      out += "{\"rule\":" + io::json_string(certify::rule_name(v.rule)) + ",\"fatal\":" + (v.fatal() ? "true" : "false");
-      if (v.simplex != certify::npos)
-        out += ",\"simplex\":" + std::to_string(v.simplex + shift) + line("line", v.simplex);
-      if (v.other_simplex != certify::npos)
-        out += ",\"other_simplex\":" + std::to_string(v.other_simplex + shift) + line("other_line", v.other_simplex);
-      if (!v.face.empty()) {
-        out += ",\"face\":[";
-        for (std::size_t j = 0; j < v.face.size(); ++j) {
-          if (j) out += ',';
-          out += std::to_string(v.face[j]);
-        }
-        out += "]";
-      }
-      if (v.point != certify::npos) out += ",\"point\":" + std::to_string(v.point);
-      out += ",\"message\":" + io::json_string(certify::describe(v, name)) + "}";
-    }
-    out += "]}\n";
-    std::fputs(out.c_str(), stdout);
-    return ok ? 0 : 1;
+    const auto line = [&](std::size_t r) { return list.lines.empty() ? certify::npos : std::size_t{list.lines[r]}; };
+    std::fputs(certify_json(report, names, line, seconds).c_str(), stdout);
+    return report.delaunay && (report.canonical || !canonical) ? 0 : 1;
   }
-
   return print_certify_text(report, names, pname, canonical, options.all);
 }
 

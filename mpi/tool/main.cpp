@@ -25,7 +25,8 @@
 // be triangulated (a non-finite coordinate, too few distinct points, not
 // spanning E^D); 2: usage, reading or writing; 0: success.
 //
-//   mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--per-rank] [--threads N]
+//   mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--json] [--per-rank] [--threads N]
+//                                                   [--stream] [--memory SIZE]
 //
 // `dewall certify` split over the ranks (certify_share, merge_shares): every
 // rank reads both files (--per-rank: triangulate --per-rank's files, in rank order), checks its share of the vertices' facets, rows and
@@ -47,6 +48,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -113,15 +115,18 @@ const char* const usage_text =
     "  --seed-spacings X   the first halo: the points within X mean spacings of a\n"
     "            rank's block (default 1; 0: none); only the time changes\n"
     "\n"
-    "usage: mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--per-rank]\n"
-    "                                      [--threads N] [--stats]\n"
+    "usage: mpirun -n R dewall-mpi certify POINTS SIMPLICES [--canonical] [--all] [--json]\n"
+    "                                      [--per-rank] [--threads N] [--stream] [--memory SIZE]\n"
+    "                                      [--stats]\n"
     "\n"
     "`dewall certify` on R ranks: the same verdict, witness, words and exit status (0:\n"
     "Delaunay, and canonical with --canonical; 1: not; 2: unreadable input). Every rank\n"
     "reads POINTS and SIMPLICES (any format dewall certify reads) and checks the facets,\n"
     "rows and points of its share of the vertices; rank 0 merges the shares' findings\n"
-    "and prints the verdict.\n"
-    "  --stats   per-rank seconds on standard error (reading, its share, merging)\n"
+    "and prints the verdict. --all, --json, --stream and --memory as dewall certify's\n"
+    "(--memory: per rank).\n"
+    "  --stats   per-rank figures on standard error: seconds (reading, its share,\n"
+    "            merging), CPU seconds (reading and its share) and peak memory\n"
     "  --per-rank  SIMPLICES is the OUT of `triangulate --per-rank`: the files\n"
     "            OUT.r0.ext, OUT.r1.ext, ... up to the first missing one, their rows\n"
     "            numbered one after another\n"
@@ -131,7 +136,8 @@ const char* const usage_text =
 struct Arguments {
   bool certify = false;
   std::string simplices;  // certify's
-  bool canonical = false, all = false;
+  bool canonical = false, all = false, json = false, stream = false;
+  std::size_t working_memory = 0;  // certify's --memory (0: the default)
   unsigned threads = 0;
   std::string input, output;
   bool stats = false, sorted = false, per_rank = false;
@@ -146,6 +152,15 @@ Arguments parse_certify(const std::vector<std::string>& a) {
     if (a[i] == "--help" || a[i] == "-h") throw Usage_error("");
     if (a[i] == "--canonical") r.canonical = true;
     else if (a[i] == "--all") r.all = true;
+    else if (a[i] == "--json") r.json = true;
+    else if (a[i] == "--stream") r.stream = true;
+    else if (a[i] == "--memory") {
+      const std::string v = i + 1 < a.size() ? a[i + 1] : std::string();
+      const auto bytes = dewall::cli::memory_size(v);
+      if (!bytes) throw Usage_error("--memory must be a positive size such as 512M or 4G, not " + v);
+      r.working_memory = *bytes;
+      ++i;
+    }
     else if (a[i] == "--per-rank") r.per_rank = true;
     else if (a[i] == "--stats") r.stats = true;
     else if (a[i] == "--threads") {
@@ -755,8 +770,17 @@ struct Simplex_files {
 
   /// "FILE:LINE" of row r.
   std::string where(std::size_t r) const {
-    const std::size_t f = static_cast<std::size_t>(std::upper_bound(first_row.begin(), first_row.end(), r) - first_row.begin()) - 1;
+    const std::size_t f = file_of(r);
     return readers[f]->list().where(dewall::io::file_name(paths[f]), r - first_row[f]);
+  }
+  /// The line of row r in its text file (dewall::certify::npos: binary).
+  std::size_t line(std::size_t r) const {
+    const std::size_t f = file_of(r);
+    const auto& lines = readers[f]->list().lines;
+    return lines.empty() ? dewall::certify::npos : lines[r - first_row[f]];
+  }
+  std::size_t file_of(std::size_t r) const {
+    return static_cast<std::size_t>(std::upper_bound(first_row.begin(), first_row.end(), r) - first_row.begin()) - 1;
   }
 };
 
@@ -816,6 +840,13 @@ dewall::certify::Share_report<D> deserialize(std::span<const std::uint64_t> w) {
   return s;
 }
 
+/// The CPU seconds of this process (all of its threads) so far.
+double cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
 /// This node's cores shared among its ranks (at least one each).
 unsigned threads_per_rank(MPI_Comm comm, int rank) {
   MPI_Comm node;
@@ -830,19 +861,20 @@ unsigned threads_per_rank(MPI_Comm comm, int rank) {
 
 template <int D>
 int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table& points, const Simplex_files& files, int rank,
-            int size, double read_seconds) {
+            int size, double read_seconds, double cpu0) {
   const double t0 = MPI_Wtime();
   namespace certify = dewall::certify;
   using K = dewall::kernel::Filtered_kernel_d<D>;
   static_assert(sizeof(dewall::kernel::Point_d<D>) == D * sizeof(double) && alignof(dewall::kernel::Point_d<D>) == alignof(double));
   const std::span<const dewall::kernel::Point_d<D>> p(reinterpret_cast<const dewall::kernel::Point_d<D>*>(points.coordinates.data()),
                                                       points.coordinates.size() / D);
-  certify::Options options{.all = args.all, .threads = args.threads ? args.threads : threads_per_rank(comm, rank)};
+  certify::Options options{.all = args.all, .threads = args.threads ? args.threads : threads_per_rank(comm, rank),
+                           .working_memory = args.working_memory};
   // As dewall certify: rows that would take more than a quarter of the memory stream.
   const std::uint64_t rows = files.first_row.back();
   const long pages = ::sysconf(_SC_PHYS_PAGES), page_size = ::sysconf(_SC_PAGESIZE);
   const std::uint64_t memory = pages > 0 && page_size > 0 ? static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page_size) : 0;
-  int stream = rows != ~std::uint64_t{0} && memory > 0 && rows * (D + 1) * 4 > memory / 4;
+  int stream = args.stream || (rows != ~std::uint64_t{0} && memory > 0 && rows * (D + 1) * 4 > memory / 4);
   // Every share must be made the same way (a streaming share numbers its
   // vertices as the input does, an in-memory one in Z order): one rank on a
   // smaller node makes them all stream.
@@ -850,9 +882,11 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
   options.stream = stream != 0;
 
   std::vector<std::uint64_t> mine;
+  double cpu = 0;  // reading and the share, before any waiting for the other ranks
   step(comm, [&] {
     Files_source<D> source(files.readers);
     mine = serialize<D>(certify::certify_share<K>(p, source, {static_cast<std::size_t>(rank), static_cast<std::size_t>(size)}, options));
+    cpu = cpu_seconds() - cpu0;
   });
   const double t1 = MPI_Wtime();
   // Rank 0 gathers the shares, in chunks (no 2^31 limit on a share).
@@ -886,19 +920,29 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
       throw File_error(files.name + ": no simplices (a triangulation of " + std::to_string(points.size()) + " points has at least one)");
     const dewall::cli::Certify_names names{files.name, points.first_index, [&](std::size_t r) { return files.where(r); },
                                            files.readers[0]->list().format};
-    status = dewall::cli::print_certify_text(report, names, dewall::io::file_name(args.input), args.canonical, args.all);
+    if (args.json) {
+      const auto line = [&](std::size_t r) { return files.line(r); };
+      std::fputs(dewall::cli::certify_json(report, names, line, MPI_Wtime() - t0).c_str(), stdout);
+      status = report.delaunay && (report.canonical || !args.canonical) ? 0 : 1;
+    } else {
+      status = dewall::cli::print_certify_text(report, names, dewall::io::file_name(args.input), args.canonical, args.all);
+    }
     std::fflush(stdout);
   });
   MPI_Bcast(&status, 1, MPI_INT, 0, comm);
   if (args.stats) {
-    const std::array<double, 3> mine_seconds = {read_seconds, t1 - t0, MPI_Wtime() - t1};
-    std::vector<double> every(rank == 0 ? 3 * static_cast<std::size_t>(size) : 0);
-    MPI_Gather(mine_seconds.data(), 3, MPI_DOUBLE, every.data(), 3, MPI_DOUBLE, 0, comm);
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    constexpr std::size_t k = 5;
+    const std::array<double, k> mine_figures = {read_seconds, t1 - t0, MPI_Wtime() - t1, cpu, static_cast<double>(usage.ru_maxrss) / 1024.0};
+    std::vector<double> every(rank == 0 ? k * static_cast<std::size_t>(size) : 0);
+    MPI_Gather(mine_figures.data(), k, MPI_DOUBLE, every.data(), k, MPI_DOUBLE, 0, comm);
     if (rank == 0) {
-      std::fprintf(stderr, "rank | seconds:   read  share  merge\n");
-      for (int q = 0; q < size; ++q)
-        std::fprintf(stderr, "%4d |          %6.3f %6.3f %6.3f\n", q, every[3 * static_cast<std::size_t>(q)],
-                     every[3 * static_cast<std::size_t>(q) + 1], every[3 * static_cast<std::size_t>(q) + 2]);
+      std::fprintf(stderr, "rank | seconds:   read  share  merge |    cpu | peak MB\n");
+      for (int q = 0; q < size; ++q) {
+        const double* e = &every[k * static_cast<std::size_t>(q)];
+        std::fprintf(stderr, "%4d |          %6.3f %6.3f %6.3f | %6.3f | %7.0f\n", q, e[0], e[1], e[2], e[3], e[4]);
+      }
     }
   }
   return status;
@@ -907,7 +951,7 @@ int certify(MPI_Comm comm, const Arguments& args, const dewall::io::Point_table&
 int certify_command(const Arguments& args, int rank, int size) {
   dewall::io::Point_table points;
   Simplex_files files;
-  const double t0 = MPI_Wtime();
+  const double t0 = MPI_Wtime(), cpu0 = cpu_seconds();
   step(MPI_COMM_WORLD, [&] {
     points = dewall::io::read_points_file(args.input);
     if (!args.per_rank) {
@@ -931,7 +975,7 @@ int certify_command(const Arguments& args, int rank, int size) {
                        " points has at least one)");
   });
   return dewall::kernel::with_dimension(points.dimension, [&](auto d) {
-    return certify<decltype(d)::value>(MPI_COMM_WORLD, args, points, files, rank, size, MPI_Wtime() - t0);
+    return certify<decltype(d)::value>(MPI_COMM_WORLD, args, points, files, rank, size, MPI_Wtime() - t0, cpu0);
   });
 }
 

@@ -172,3 +172,32 @@ TEST_CASE("certify shares: a missing, repeated or differently made share is refu
   CHECK_THROWS_AS(merged(Shares{share(0, 2, true), share(1, 2, false)}), std::invalid_argument);
   CHECK(merged(Shares{share(0, 2, true), share(1, 2, true)}).delaunay);
 }
+
+TEST_CASE("certify shares: the rows' screen keeps what the plain test keeps", "[certify][shares]") {
+  // Random rows, some with indices out of range, against the plain test of
+  // each row: a vertex in the set, or an index out of range in a row the share reports.
+  std::mt19937_64 rng(6168);
+  for (int round = 0; round < 200; ++round) {
+    const std::size_t n = 1 + rng() % 300, parts = 1 + rng() % 4, part = rng() % parts, r0 = rng() % 1000;
+    std::vector<bool> plain(n);
+    dewall::certify::detail::Vertex_set mine(n);
+    const std::uint64_t density = rng() % 5;  // of 4: none to all
+    for (std::size_t v = 0; v < n; ++v)
+      if (rng() % 4 < density) plain[v] = true, mine.insert(v);
+    for (std::size_t v = 0; v < n + 70; ++v) REQUIRE(mine.contains(v) == (v < n && plain[v]));
+    std::vector<std::array<std::uint32_t, 4>> rows(rng() % 200);
+    for (auto& c : rows)
+      for (auto& v : c) v = rng() % 16 == 0 ? static_cast<std::uint32_t>(n + rng() % 3 * 1000) : static_cast<std::uint32_t>(rng() % n);
+    if (!rows.empty() && round % 2) rows[rng() % rows.size()][rng() % 4] = ~std::uint32_t{0};
+    const std::size_t a = rows.empty() ? 0 : rng() % rows.size(), b = a + (rows.size() > a ? rng() % (rows.size() - a + 1) : 0);
+    std::vector<std::uint32_t> expected = {7}, screened = {7};  // appended after what is there
+    for (std::size_t i = a; i < b; ++i) {
+      const bool outside = std::any_of(rows[i].begin(), rows[i].end(), [&](std::uint32_t v) { return v >= n; });
+      const bool any = std::any_of(rows[i].begin(), rows[i].end(), [&](std::uint32_t v) { return v < n && plain[v]; });
+      if (outside ? (r0 + i) % parts == part : any) expected.push_back(static_cast<std::uint32_t>(i));
+    }
+    dewall::certify::detail::screen_rows<4>(std::span<const std::array<std::uint32_t, 4>>(rows), a, b, r0, mine, part, parts, screened);
+    INFO("round " << round << ", " << n << " points, rows " << a << " to " << b);
+    CHECK(screened == expected);
+  }
+}

@@ -353,3 +353,97 @@ TEST_CASE("certify spatial order: the same order on one thread or several", "[ce
   std::iota(every.begin(), every.end(), 0u);
   CHECK(sorted == every);
 }
+
+namespace {
+
+/// The Z order's keys as bits interleaved one at a time (the definition), sorted with their indices.
+template <int D>
+std::vector<std::uint64_t> z_keys_by_bits(const std::vector<std::array<double, D>>& p) {
+  std::array<double, D> lo, hi;
+  lo.fill(INFINITY);
+  hi.fill(-INFINITY);
+  for (const auto& x : p)
+    for (int j = 0; j < D; ++j) lo[j] = std::min(lo[j], x[j]), hi[j] = std::max(hi[j], x[j]);
+  constexpr int bits = 32 / D;
+  constexpr double cells = double(1u << bits);
+  std::vector<std::uint64_t> keys;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    std::array<std::uint32_t, D> q;
+    for (int j = 0; j < D; ++j) {
+      const double extent = hi[j] * 0.5 - lo[j] * 0.5;
+      const double t = extent > 0 ? (p[i][j] * 0.5 - lo[j] * 0.5) / extent : 0.0;
+      q[j] = static_cast<std::uint32_t>(std::min(t * cells, cells - 1));
+    }
+    std::uint64_t key = 0;
+    for (int bit = bits - 1; bit >= 0; --bit)
+      for (int j = 0; j < D; ++j) key = (key << 1) | ((q[j] >> bit) & 1u);
+    keys.push_back((key << 32) | i);
+  }
+  std::sort(keys.begin(), keys.end());
+  return keys;
+}
+
+/// Points drawn from a few, so many repeat, with −0 for +0 now and then, a
+/// far point that crowds the others into a few cells when `crowded`, and
+/// some not finite.
+template <int D>
+std::vector<std::array<double, D>> repeating_points(std::size_t n, bool crowded, std::mt19937_64& rng) {
+  std::vector<std::array<double, D>> pool(1 + n / 4);
+  for (auto& x : pool)
+    for (auto& c : x) c = rng() % 3 == 0 ? 0.0 : double(rng() % 1000) / 1000;
+  std::vector<std::array<double, D>> p;
+  for (std::size_t i = 0; i < n; ++i) {
+    auto x = pool[rng() % pool.size()];
+    for (auto& c : x)
+      if (c == 0 && rng() % 2) c = -0.0;
+    if (rng() % 50 == 0) x[rng() % D] = rng() % 2 ? NAN : -INFINITY;
+    p.push_back(x);
+  }
+  if (crowded) p.push_back({}), p.back().fill(1e12);
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("certify spatial order: keys by spread bits, and duplicates found in cells as by hashing", "[certify][spatial_order]") {
+  // The keys equal the interleaving bit by bit; the first occurrences found
+  // in the cells of the Z order equal kernel::first_occurrences (a hash table),
+  // for sparse and crowded cells (the latter sorted), −0 and +0, excluded points.
+  std::mt19937_64 rng(6169);
+  const auto run = [&]<int D>(std::integral_constant<int, D>) {
+    for (int round = 0; round < 20; ++round) {
+      const bool crowded = round % 2;
+      const auto p = repeating_points<D>(10 + rng() % 400, crowded, rng);
+      const auto coords = [](const std::array<double, D>& x) -> const std::array<double, D>& { return x; };
+      const auto finite = [&](std::size_t i) { return std::all_of(p[i].begin(), p[i].end(), [](double c) { return std::isfinite(c); }); };
+      const auto excluded = [&](std::size_t i) { return !finite(i); };
+      const auto sorted = certify::detail::z_order_keys<D>(std::span<const std::array<double, D>>(p), coords, finite);
+      std::vector<std::array<double, D>> finite_points;  // the keys of the finite points, as the definition has them
+      std::vector<std::uint64_t> expected_keys;
+      {
+        std::vector<std::size_t> index;
+        for (std::size_t i = 0; i < p.size(); ++i)
+          if (finite(i)) finite_points.push_back(p[i]), index.push_back(i);
+        for (std::uint64_t k : z_keys_by_bits<D>(finite_points)) expected_keys.push_back((k >> 32 << 32) | index[k & 0xffffffffu]);
+        for (std::size_t i = 0; i < p.size(); ++i)
+          if (!finite(i)) expected_keys.push_back(i);  // key 0
+        std::sort(expected_keys.begin(), expected_keys.end());
+      }
+      INFO("D = " << D << ", round " << round << ", " << p.size() << " points");
+      CHECK(sorted == expected_keys);
+      const auto compare = [](const std::array<double, D>& a, const std::array<double, D>& b) {
+        for (int j = 0; j < D; ++j)
+          if (a[j] != b[j]) return a[j] < b[j] ? kernel::SMALLER : kernel::LARGER;
+        return kernel::EQUAL;
+      };
+      const auto by_cells = certify::detail::first_occurrences_in_z_order(std::span<const std::array<double, D>>(p),
+                                                                          std::span<const std::uint64_t>(sorted), compare, excluded);
+      const auto by_hash = kernel::first_occurrences(std::span<const std::array<double, D>>(p), compare, coords, excluded);
+      CHECK(by_cells == by_hash);
+      CHECK(std::count_if(by_cells.begin(), by_cells.end(), [&, i = std::size_t{0}](std::uint32_t f) mutable { return f != i++; }) > 0);
+    }
+  };
+  run(std::integral_constant<int, 2>{});
+  run(std::integral_constant<int, 3>{});
+  run(std::integral_constant<int, 4>{});
+}

@@ -9,7 +9,7 @@
 #   * 8-byte .dwsx indices (--index-bytes 8): canonical;
 #   * certify on 1, 2 and 3 ranks: the words and exit status of `dewall certify`
 #     on a canonical output and on mutants of it (with and without --all, with
-#     --canonical), and on --per-rank files;
+#     --canonical; --json, --stream, --memory), and on --per-rank files;
 #   * a NaN in one rank's share: exit 1 on every rank, one message naming the point;
 #   * a truncated file, a missing file: exit 2, one message;
 #   * no -o: exit 2, one line and a pointer to the help; help, help triangulate;
@@ -120,13 +120,15 @@ run 2 triangulate u3.dwpt -o u3.bad.dwsx --index-bytes 6
 [ "$status" -eq 2 ] || fail "--index-bytes 6: exit $status, expected 2"
 echo "8-byte indices: canonical"
 
-# certify: what `dewall certify` prints (standard output) and its exit status.
+# certify: what `dewall certify` prints (standard output; --json's but its
+# seconds) and its exit status.
 certify_same() {  # certify_same RANKS FILE ARGS…
   local ranks=$1 file=$2; shift 2
   "$dewall" certify u3.dwpt "$file" "$@" >want.out 2>/dev/null
   local want=$?
   "$mpiexec" "$np" "$ranks" "$tool" certify u3.dwpt "$file" "$@" >got.out 2>/dev/null
   local got=$?
+  sed -i 's/,"seconds":[0-9.e+-]*//' want.out got.out
   if [ "$got" -ne "$want" ] || ! cmp -s want.out got.out; then
     fail "certify $file $* on $ranks ranks: exit $got, dewall certify's $want"; diff want.out got.out >&2
   fi
@@ -144,6 +146,15 @@ for ranks in 1 2 3; do
   done
 done
 grep -q "^not delaunay" got.out || fail "certify: the last mutant not rejected"
+for ranks in 2 3; do  # --json, --stream, --memory
+  certify_same "$ranks" u3.3.dwsx --json --canonical
+  certify_same "$ranks" u3.m1.txt --json --all
+  certify_same "$ranks" u3.m4.txt --stream --memory 1K
+  certify_same "$ranks" u3.m2.txt --json --stream --memory 64K --all --canonical
+done
+grep -q '^{"delaunay":false,.*"violations":\[{"rule":' got.out || { fail "certify --json: no violations listed"; cat got.out >&2; }
+"$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.3.dwsx --memory 12Q >got.out 2>&1
+[ $? -eq 2 ] && grep -q -- "--memory must be a positive size" got.out || { fail "certify --memory 12Q"; cat got.out >&2; }
 "$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.parts.txt --per-rank --canonical >got.out 2>&1 &&
   grep -q "^delaunay canonical: u3.parts.r\*.txt is the canonical" got.out || { fail "certify --per-rank"; cat got.out >&2; }
 # A mutant of the whole set (every file but one vertex of one row as written).
@@ -163,7 +174,7 @@ run 2 triangulate u3.dwpt -o u3.stale.txt --per-rank
 "$mpiexec" "$np" 2 "$tool" certify u3.dwpt u3.stale.txt --per-rank --canonical >got.out 2>&1 ||
   { fail "certify --per-rank after a run on fewer ranks"; cat got.out >&2; }
 rm -f want.out got.out
-echo "certify: dewall certify's words and status on 1-3 ranks, canonical and mutants; --per-rank"
+echo "certify: dewall certify's words and status on 1-3 ranks, canonical and mutants; --json, --stream; --per-rank"
 
 # The errors. old.txt must survive each of them.
 echo "old contents" >old.txt

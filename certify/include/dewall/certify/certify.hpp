@@ -90,6 +90,7 @@
 #include "dewall/certify/facet_table.hpp"
 #include "dewall/certify/report.hpp"
 #include "dewall/certify/row_buckets.hpp"
+#include "dewall/certify/share_screen.hpp"
 #include "dewall/certify/simplex_source.hpp"
 #include "dewall/certify/spatial_order.hpp"
 #include "dewall/certify/witness_point.hpp"
@@ -189,6 +190,7 @@ class Certifier {
     check_points();
     make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
+    std::vector<std::uint64_t>().swap(z_sorted_);
     read_rows(source);
     if (!stop()) check_vertices();
     std::vector<bool>().swap(duplicate_);
@@ -334,7 +336,7 @@ class Certifier {
         const bool own = r % share_.parts == share_.part;
         return {own, own};
       }
-      any = any || mine_[v];
+      any = any || mine_.contains(v);
     }
     if (!any) return {false, false};
     std::uint32_t smallest = std::numeric_limits<std::uint32_t>::max();
@@ -418,10 +420,19 @@ class Certifier {
         if (bad_point_[i] && owns_bad_point(i)) fail({.rule = Rule::non_finite_point, .point = i});
       }
     }
-    // Streaming, the duplicates' table stays within the working memory too.
-    const std::vector<std::uint32_t> first = kernel::first_occurrences(
-        points_, k_.compare_lexicographically_d_object(), k_.approximate_coordinates_object(),
-        [&](std::size_t i) { return bool(bad_point_[i]); }, options_.stream ? stream_budget() : 0, loop(), threads_for(n));
+    const auto excluded = [&](std::size_t i) { return bool(bad_point_[i]); };
+    std::vector<std::uint32_t> first;
+    if (options_.spatial_order && !options_.stream && n >= 2) {
+      // The Z order (renumber's) puts equal points in one cell: they are
+      // compared there, without a table of all points.
+      z_sorted_ = z_order_keys<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; },
+                                  loop(), 4 * threads_for(n));
+      first = first_occurrences_in_z_order(points_, std::span<const std::uint64_t>(z_sorted_), k_.compare_lexicographically_d_object(), excluded);
+    } else {
+      // Streaming, the duplicates' table stays within the working memory too.
+      first = kernel::first_occurrences(points_, k_.compare_lexicographically_d_object(), k_.approximate_coordinates_object(),
+                                        excluded, options_.stream ? stream_budget() : 0, loop(), threads_for(n));
+    }
     // Only whether a point repeats an earlier one is asked later: a bit each.
     duplicate_.assign(n, false);
     for (std::size_t i = 0; i < n; ++i) {
@@ -434,8 +445,9 @@ class Certifier {
   void renumber() {
     const std::size_t n = points_.size();
     if (n < 2) return;
-    to_input_ = z_order<D>(points_, k_.approximate_coordinates_object(), [&](std::size_t i) { return !bad_point_[i]; },
-                           loop(), 4 * threads_for(n));
+    to_input_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) to_input_[i] = static_cast<std::uint32_t>(z_sorted_[i]);
+    std::vector<std::uint64_t>().swap(z_sorted_);
     to_work_.resize(n);
     work_points_.resize(n);
     const std::size_t parts = std::clamp<std::size_t>(n / 65536, 1, 4 * threads_for(n));
@@ -486,8 +498,9 @@ class Certifier {
         rows_.reserve(m);
       }
       if (sharing_) {
-        mine_.assign(n, 0);
-        for (std::size_t i = 0; i < n; ++i) mine_[i] = owns_vertex(work_number(static_cast<std::uint32_t>(i)));
+        mine_ = Vertex_set(n);
+        for (std::size_t i = 0; i < n; ++i)
+          if (owns_vertex(work_number(static_cast<std::uint32_t>(i)))) mine_.insert(i);
       }
     }
     std::optional<Witness_point<K>> witness;
@@ -521,24 +534,34 @@ class Certifier {
       const std::size_t ranges = std::clamp<std::size_t>(k / 4096, 1, 64);
       std::vector<Results> results(ranges);
       const bool concurrent = threads_for(ranges) > 1;
+      // A share of several screens the rows first (share_screen.hpp) and goes
+      // on with those that matter to it, listed by range; out[] is written
+      // only for those.
+      const bool screened = sharing_ && share_.parts > 1;
+      std::vector<std::vector<std::uint32_t>> listed(screened ? ranges : 0);
       for_each_parallel(ranges, [&](std::size_t j) {
         Results& res = results[j];
         std::vector<Violation> others;  // another share's to report
         const std::size_t a = k * j / ranges, b = k * (j + 1) / ranges;
-        for (std::size_t i = a; i < b; ++i) {
+        const std::uint32_t* list = nullptr;
+        std::size_t todo = b - a;
+        if (screened) {
+          screen_rows<D + 1>(in, a, b, r0, mine_, share_.part, share_.parts, listed[j]);
+          list = listed[j].data();
+          todo = listed[j].size();
+        }
+        const auto row = [&](std::size_t t) { return list ? std::size_t{list[t]} : a + t; };
+        for (std::size_t t = 0; t < todo; ++t) {
+          const std::size_t i = row(t);
           out[i] = invalid_row<D + 1>();
           if (!options_.all && !res.fatal.empty()) continue;
-          // The rows come in order, their points at random: ask for them a few
-          // rows ahead (a share: the points of its range).
-          if (i + 8 < b)
-            for (std::uint32_t v : in[i + 8])
-              if (v < n && (!sharing_ || mine_[v])) prefetch(work_number(v));
-          if (!to_work_.empty() && i + 16 < b)
-            for (std::uint32_t v : in[i + 16])
-              if (v < n) __builtin_prefetch(sharing_ ? static_cast<const void*>(&mine_[v]) : &to_work_[v]);
-          if (sharing_ && !to_work_.empty() && i + 12 < b)
-            for (std::uint32_t v : in[i + 12])
-              if (v < n && mine_[v]) __builtin_prefetch(&to_work_[v]);
+          // The rows come in order, their points at random: ask for them a few rows ahead.
+          if (t + 8 < todo)
+            for (std::uint32_t v : in[row(t + 8)])
+              if (v < n) prefetch(work_number(v));
+          if (!to_work_.empty() && t + 16 < todo)
+            for (std::uint32_t v : in[row(t + 16)])
+              if (v < n) __builtin_prefetch(&to_work_[v]);
           // A share checks the rows with a vertex in its range (every share
           // decides a row's validity alike) and reports those it owns.
           const auto [relevant, owned] = share_of_row(in[i], r0 + i);
@@ -562,23 +585,31 @@ class Certifier {
         for (Violation& v : res.fatal) fail(std::move(v));
         covering_.insert(covering_.end(), res.covering.begin(), res.covering.end());
       }
+      // The rows checked, in order: all of the block, or a share's listed ones.
+      const auto for_each_checked = [&](auto&& f) {
+        if (!screened)
+          for (std::size_t i = 0; i < k; ++i) f(i);
+        else
+          for (const auto& list : listed)
+            for (std::uint32_t i : list) f(std::size_t{i});
+      };
       if (compact() && !stop())
-        for (std::size_t i = 0; i < k; ++i) {
-          if (!is_valid_row(out[i])) continue;
+        for_each_checked([&](std::size_t i) {
+          if (!is_valid_row(out[i])) return;
           rows_.push_back(out[i]);
           row_of_.push_back(r0 + i);
-        }
+        });
       if (options_.stream && !stop())
-        for (std::size_t i = 0; i < k; ++i) {
-          if (!is_valid_row(out[i])) continue;
+        for_each_checked([&](std::size_t i) {
+          if (!is_valid_row(out[i])) return;
           Cell sorted = out[i];
           decode_row(sorted);
           buckets_->add(r0 + i, out[i], sorted);
-        }
+        });
     }
     report_.simplices = r0;
     std::vector<std::uint8_t>().swap(usable_);
-    std::vector<std::uint8_t>().swap(mine_);
+    mine_ = {};
     if (buckets_) buckets_->finish();
   }
 
@@ -860,7 +891,11 @@ class Certifier {
     std::size_t target = std::size_t{1} << 18;
     if (options_.working_memory) target = std::min(target, options_.working_memory / workers);
     target = std::max<std::size_t>(1, target / sizeof(Record));
-    std::size_t width = std::bit_floor(std::max<std::size_t>(1, target * n / std::max<std::size_t>(total, 1)));
+    // A share walks its range of vertices when the walk is in the certifier's
+    // numbers: its facets are filed there, and the ranges' width follows.
+    std::size_t v_lo = 0, v_hi = n;
+    if (sharing_ && (renumbered() || to_work_.empty())) v_lo = lo_, v_hi = hi_;
+    std::size_t width = std::bit_floor(std::max<std::size_t>(1, target * (v_hi - v_lo) / std::max<std::size_t>(total, 1)));
     width = std::max(width, std::bit_ceil(std::max<std::size_t>(1, (n + (std::size_t{1} << 20) - 1) >> 20)));
     const int shift = std::countr_zero(width);
     const std::size_t ranges = (n + width - 1) >> shift;
@@ -907,9 +942,6 @@ class Certifier {
     std::vector<std::vector<std::uint32_t>> counts(workers);
     std::vector<Facet_results> results(ranges);
     const std::size_t batch = 64 * std::size_t{workers};
-    // A share walks its range of vertices when the walk is in the certifier's numbers.
-    std::size_t v_lo = 0, v_hi = n;
-    if (sharing_ && (renumbered() || to_work_.empty())) v_lo = lo_, v_hi = hi_;
     const std::size_t first_range = v_lo >> shift, end_range = v_hi > v_lo ? ((v_hi - 1) >> shift) + 1 : first_range;
     for (std::size_t first = first_range; first < end_range && !stop_facets(); first += batch) {
       const std::size_t last = std::min(end_range, first + batch);
@@ -1194,7 +1226,8 @@ class Certifier {
   std::vector<Violation> fatal_, facet_fatal_, delaunay_, notes_;
   std::vector<bool> bad_point_;
   kernel::Static_filter_d<D> static_filter_;  // over the finite points' box (never decides until made)
-  std::vector<bool> duplicate_;  // a later occurrence of an earlier point
+  std::vector<bool> duplicate_;            // a later occurrence of an earlier point
+  std::vector<std::uint64_t> z_sorted_;     // check_points' Z order for renumber (z_order_keys)
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
   std::vector<Point> work_points_;
   std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
@@ -1203,7 +1236,7 @@ class Certifier {
   std::size_t proper_rows_ = 0;             // rows found proper simplices
   std::vector<Cell> rows_;                  // every row, encode_row'd (in memory; a share: its valid rows)
   std::vector<std::size_t> row_of_;         // a share's: the row of each of rows_
-  std::vector<std::uint8_t> mine_;          // a share's: its vertices, in the input's numbers
+  Vertex_set mine_;                         // a share's: its vertices, in the input's numbers
   std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)
   std::size_t first_row_ = npos;            // the first proper simplex: the witness lies in it
   Cell first_cell_{};                       // its vertices (input numbers), positively oriented
