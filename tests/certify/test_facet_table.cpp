@@ -430,7 +430,7 @@ TEST_CASE("certify spatial order: keys by spread bits, and duplicates found in c
         std::sort(expected_keys.begin(), expected_keys.end());
       }
       INFO("D = " << D << ", round " << round << ", " << p.size() << " points");
-      CHECK(sorted == expected_keys);
+      CHECK(std::vector<std::uint64_t>(sorted.begin(), sorted.end()) == expected_keys);
       const auto compare = [](const std::array<double, D>& a, const std::array<double, D>& b) {
         for (int j = 0; j < D; ++j)
           if (a[j] != b[j]) return a[j] < b[j] ? kernel::SMALLER : kernel::LARGER;

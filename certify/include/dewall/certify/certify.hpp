@@ -93,6 +93,7 @@
 #include "dewall/certify/share_screen.hpp"
 #include "dewall/certify/simplex_source.hpp"
 #include "dewall/certify/spatial_order.hpp"
+#include "dewall/certify/uninitialized.hpp"
 #include "dewall/certify/witness_point.hpp"
 #include "dewall/kernel/concepts.hpp"
 #include "dewall/kernel/filtered_kernel_d.hpp"
@@ -190,7 +191,7 @@ class Certifier {
     check_points();
     make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
-    std::vector<std::uint64_t>().swap(z_sorted_);
+    decltype(z_sorted_)().swap(z_sorted_);
     read_rows(source);
     if (!stop()) check_vertices();
     std::vector<bool>().swap(duplicate_);
@@ -447,7 +448,7 @@ class Certifier {
     if (n < 2) return;
     to_input_.resize(n);
     for (std::size_t i = 0; i < n; ++i) to_input_[i] = static_cast<std::uint32_t>(z_sorted_[i]);
-    std::vector<std::uint64_t>().swap(z_sorted_);
+    decltype(z_sorted_)().swap(z_sorted_);
     to_work_.resize(n);
     work_points_.resize(n);
     const std::size_t parts = std::clamp<std::size_t>(n / 65536, 1, 4 * threads_for(n));
@@ -743,7 +744,7 @@ class Certifier {
     }
     for (Violation& v : facet_fatal_) fail(std::move(v));
     std::vector<std::uint32_t>().swap(facet_count_);
-    std::vector<Cell>().swap(rows_);
+    decltype(rows_)().swap(rows_);
     std::vector<std::size_t>().swap(row_of_);
     buckets_.reset();
   }
@@ -762,7 +763,7 @@ class Certifier {
       }
     });
     std::vector<std::uint32_t>().swap(to_input_);
-    std::vector<Point>().swap(work_points_);
+    decltype(work_points_)().swap(work_points_);
     work_ = points_;
     boundary_.clear();
     facet_fatal_.clear();
@@ -925,7 +926,7 @@ class Certifier {
       }
     offset[ranges * parts] = listed;
     std::vector<std::size_t>().swap(start);
-    std::vector<Row> list(listed);
+    Uninitialized_vector<Row> list(listed);
     for_each_parallel(parts, [&](std::size_t p) {
       std::vector<std::size_t> next(ranges);
       for (std::size_t R = 0; R < ranges; ++R) next[R] = offset[R * parts + p];
@@ -1227,14 +1228,14 @@ class Certifier {
   std::vector<bool> bad_point_;
   kernel::Static_filter_d<D> static_filter_;  // over the finite points' box (never decides until made)
   std::vector<bool> duplicate_;            // a later occurrence of an earlier point
-  std::vector<std::uint64_t> z_sorted_;     // check_points' Z order for renumber (z_order_keys)
+  Uninitialized_vector<std::uint64_t> z_sorted_;  // check_points' Z order for renumber (z_order_keys)
   std::vector<std::uint32_t> to_work_, to_input_;  // the certifier's numbering (empty: the input's)
-  std::vector<Point> work_points_;
+  Uninitialized_vector<Point> work_points_;
   std::vector<std::uint8_t> used_;          // a vertex of a proper simplex (bytes: set from all cores)
   std::vector<std::uint8_t> usable_;        // finite and a first occurrence (while the rows are read)
   std::vector<std::uint32_t> facet_count_;  // facets of proper simplices by smallest vertex (streaming)
   std::size_t proper_rows_ = 0;             // rows found proper simplices
-  std::vector<Cell> rows_;                  // every row, encode_row'd (in memory; a share: its valid rows)
+  Uninitialized_vector<Cell> rows_;         // every row, encode_row'd (in memory; a share: its valid rows)
   std::vector<std::size_t> row_of_;         // a share's: the row of each of rows_
   Vertex_set mine_;                         // a share's: its vertices, in the input's numbers
   std::optional<Row_buckets<D + 1>> buckets_;  // the proper rows (streaming)

@@ -16,6 +16,7 @@
 #include <utility>
 #include <vector>
 
+#include "dewall/certify/uninitialized.hpp"
 #include "dewall/kernel/serial_loop.hpp"
 #include "dewall/kernel/sign.hpp"
 
@@ -47,7 +48,7 @@ constexpr std::uint64_t spread_bits(std::uint32_t x) {
 /// counted on its own. The order is the same for any loop and any number of parts.
 /// Complexity: O(n), three passes of an 11-bit radix sort.
 template <int D, class Point, class Coordinates, class Finite, class Loop = kernel::Serial_loop>
-std::vector<std::uint64_t> z_order_keys(std::span<const Point> points, Coordinates coordinates, Finite finite, Loop loop = {},
+Uninitialized_vector<std::uint64_t> z_order_keys(std::span<const Point> points, Coordinates coordinates, Finite finite, Loop loop = {},
                                         std::size_t parts = 1) {
   const std::size_t n = points.size();
   parts = std::clamp<std::size_t>(n / 65536, 1, std::max<std::size_t>(parts, 1));
@@ -80,7 +81,7 @@ std::vector<std::uint64_t> z_order_keys(std::span<const Point> points, Coordinat
   // in [0, 1] (rounding is monotone) and never NaN, for any finite points.
   std::array<double, D> extent;
   for (int j = 0; j < D; ++j) extent[j] = hi[j] * 0.5 - lo[j] * 0.5;
-  std::vector<std::uint64_t> a(n), b(n);
+  Uninitialized_vector<std::uint64_t> a(n), b(n);
   loop(parts, [&](std::size_t k, unsigned) {
     for (auto [i, end] = range(k); i < end; ++i) {
       std::uint64_t key = 0;
@@ -123,7 +124,7 @@ std::vector<std::uint64_t> z_order_keys(std::span<const Point> points, Coordinat
 template <int D, class Point, class Coordinates, class Finite, class Loop = kernel::Serial_loop>
 std::vector<std::uint32_t> z_order(std::span<const Point> points, Coordinates coordinates, Finite finite, Loop loop = {},
                                    std::size_t parts = 1) {
-  const std::vector<std::uint64_t> a = z_order_keys<D>(points, coordinates, finite, loop, parts);
+  const auto a = z_order_keys<D>(points, coordinates, finite, loop, parts);
   std::vector<std::uint32_t> order(a.size());
   for (std::size_t i = 0; i < a.size(); ++i) order[i] = static_cast<std::uint32_t>(a[i]);
   return order;
