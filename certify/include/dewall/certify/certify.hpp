@@ -191,7 +191,7 @@ class Certifier {
     check_points();
     make_static_filter();
     if (!stop() && options_.spatial_order && !options_.stream) renumber();
-    decltype(z_sorted_)().swap(z_sorted_);
+    decltype(z_sorted_)().swap(z_sorted_);  // renumber's (also when it did not run)
     read_rows(source);
     if (!stop()) check_vertices();
     std::vector<bool>().swap(duplicate_);
@@ -438,7 +438,7 @@ class Certifier {
     duplicate_.assign(n, false);
     for (std::size_t i = 0; i < n; ++i) {
       duplicate_[i] = first[i] != i;
-      if (!bad_point_[i] && first[i] == i) ++report_.distinct_points;
+      if (!bad_point_[i] && !duplicate_[i]) ++report_.distinct_points;
     }
   }
 
@@ -447,15 +447,15 @@ class Certifier {
     const std::size_t n = points_.size();
     if (n < 2) return;
     to_input_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) to_input_[i] = static_cast<std::uint32_t>(z_sorted_[i]);
-    decltype(z_sorted_)().swap(z_sorted_);
     to_work_.resize(n);
     work_points_.resize(n);
     const std::size_t parts = std::clamp<std::size_t>(n / 65536, 1, 4 * threads_for(n));
     for_each_parallel(parts, [&](std::size_t k) {
       for (std::size_t i = n * k / parts; i < n * (k + 1) / parts; ++i) {
-        to_work_[to_input_[i]] = static_cast<std::uint32_t>(i);
-        work_points_[i] = points_[to_input_[i]];
+        const auto v = static_cast<std::uint32_t>(z_sorted_[i]);  // the index in the key's low half
+        to_input_[i] = v;
+        to_work_[v] = static_cast<std::uint32_t>(i);
+        work_points_[i] = points_[v];
       }
     });
     work_ = work_points_;
